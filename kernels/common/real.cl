@@ -1,0 +1,20 @@
+// The kernels' floating-point type `real`, chosen at build time by -DTALUS_DOUBLE=0|1, and the
+// physical constants shared with the host (src/core/Constants.hpp holds the same values).
+#ifndef TALUS_REAL_CL
+#define TALUS_REAL_CL
+
+#if TALUS_DOUBLE
+#pragma OPENCL EXTENSION cl_khr_fp64 : enable
+typedef double real;
+#define REAL_MAX DBL_MAX
+#define REAL_EPS DBL_EPSILON
+#else
+typedef float real;
+#define REAL_MAX FLT_MAX
+#define REAL_EPS FLT_EPSILON
+#endif
+
+/// Gravitational acceleration [m/s^2], the one value host and kernels use (spec §1).
+#define GRAVITY ((real)9.81)
+
+#endif
