@@ -1,6 +1,7 @@
 // Device reductions (sum, min, max) of a RealBuffer; only the final scalar is read back.
 #pragma once
 #include <cstddef>
+#include <vector>
 
 #include "compute/Buffer.hpp"
 #include "compute/Kernel.hpp"
@@ -17,12 +18,16 @@ class Reducer {
   double sum(const RealBuffer& in, std::size_t n) { return reduce(in, n, ReduceOp::Sum); }
   double min(const RealBuffer& in, std::size_t n) { return reduce(in, n, ReduceOp::Min); }
   double max(const RealBuffer& in, std::size_t n) { return reduce(in, n, ReduceOp::Max); }
+  /// Reduces ops.size() (at most 16) consecutive rows of length n of `in`, row r with ops[r], in one
+  /// launch and one read-back.
+  std::vector<double> reduceRows(const RealBuffer& in, std::size_t n, const std::vector<ReduceOp>& ops);
 
  private:
   static constexpr std::size_t kLocal = 128;
   static constexpr std::size_t kMaxGroups = 64;
   Context& ctx_;
   Kernel stage_;
+  Kernel rows_;
   RealBuffer partials_;
   RealBuffer result_;
 };

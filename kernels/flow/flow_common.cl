@@ -1,0 +1,134 @@
+// Shared definitions of the shallow-water kernels: the parameter block (mirrored by
+// src/flow/FlowParams.hpp), cell and face indexing, the tile map, limiters and the reconstruction.
+//
+// Build options: -DLIMITER=0 (minmod) | 1 (van Leer) | 2 (monotonised central) | 3 (none: first order),
+//                -DRIEMANN=0 (HLL) | 1 (HLLC), -DTILE=16 (tile edge in cells).
+#ifndef TALUS_FLOW_COMMON_CL
+#define TALUS_FLOW_COMMON_CL
+#include "common/real.cl"
+
+#ifndef LIMITER
+#define LIMITER 1
+#endif
+#ifndef RIEMANN
+#define RIEMANN 1
+#endif
+#ifndef TILE
+#define TILE 16
+#endif
+
+#define BOUNDARY_WALL 0
+#define BOUNDARY_OPEN 1
+
+/// Run constants in __constant memory. Layout checked against the host struct by static_assert.
+typedef struct {
+  int nx, ny;             // cells
+  int tiles_x, tiles_y;   // tiles of TILE x TILE cells
+  int edge_boundary;      // BOUNDARY_WALL or BOUNDARY_OPEN at the raster edge
+  int nodata_boundary;    // same, at faces to nodata cells
+  int skip_dry_tiles;     // 0: every tile active
+  int pad0;
+  real dx;                // cell size [m]
+  real h_dry;             // below this thickness velocities are zero [m]
+  real arrival_h;         // thickness that marks arrival [m]
+  real pad1;
+} FlowParams;
+
+inline int cell_index(__constant const FlowParams* p, int i, int j) { return j * p->nx + i; }
+
+/// 1 inside the domain (on the raster and not nodata), 0 outside.
+inline int cell_inside(__constant const FlowParams* p, __global const uchar* mask, int i, int j) {
+  if (i < 0 || j < 0 || i >= p->nx || j >= p->ny) return 0;
+  return mask[j * p->nx + i] != 0;
+}
+
+/// Boundary type of the face from inside cell (i,j) to the outside cell (io,jo).
+inline int boundary_kind(__constant const FlowParams* p, int io, int jo) {
+  const int off_raster = io < 0 || jo < 0 || io >= p->nx || jo >= p->ny;
+  return off_raster ? p->edge_boundary : p->nodata_boundary;
+}
+
+inline int tile_of(__constant const FlowParams* p, int i, int j) { return (j / TILE) * p->tiles_x + (i / TILE); }
+
+inline int cell_active(__constant const FlowParams* p, __global const int* tile_active, int i, int j) {
+  return tile_active[tile_of(p, i, j)] != 0;
+}
+
+/// Velocity from momentum, desingularised near dry cells (Kurganov & Petrova 2007, eq. 2.21):
+/// u = sqrt(2) h q / sqrt(h^4 + max(h^4, eps^4)), zero below the dry threshold.
+inline real velocity(real h, real q, real h_dry) {
+  if (h <= h_dry) return (real)0;
+  const real h4 = h * h * h * h;
+  const real e4 = h_dry * h_dry * h_dry * h_dry;
+  return M_SQRT2 * h * q / sqrt(h4 + fmax(h4, e4));
+}
+
+/// Limited slope from the backward difference a and forward difference b.
+inline real limited_slope(real a, real b) {
+#if LIMITER == 0
+  // minmod
+  return (a * b <= (real)0) ? (real)0 : (fabs(a) < fabs(b) ? a : b);
+#elif LIMITER == 1
+  // van Leer: harmonic mean of the two differences
+  return (a * b <= (real)0) ? (real)0 : (real)2 * a * b / (a + b);
+#elif LIMITER == 3
+  // no reconstruction: the first-order Godunov-type scheme (for comparisons)
+  return (real)0;
+#else
+  // monotonised central (van Leer 1977): minmod(2a, 2b, (a+b)/2)
+  if (a * b <= (real)0) return (real)0;
+  const real c = (real)0.5 * (a + b);
+  const real m = fmin(fmin(fabs((real)2 * a), fabs((real)2 * b)), fabs(c));
+  return copysign(m, c);
+#endif
+}
+
+/// Reconstructed values of one cell at its two faces along one direction.
+typedef struct {
+  real h_lo, h_hi;    // thickness at the minus / plus face
+  real e_lo, e_hi;    // free surface eta = h + b at the faces
+  real un_lo, un_hi;  // velocity normal to the faces
+  real ut_lo, ut_hi;  // velocity along the faces
+} CellFaces;
+
+/// Primitive state of one cell: thickness, free surface, normal and tangential velocity.
+typedef struct {
+  real h, e, un, ut;
+} Prim;
+
+inline Prim load_prim(__constant const FlowParams* p, __global const real* h, __global const real* qx,
+                      __global const real* qy, __global const real* b, int k, int dir) {
+  Prim s;
+  s.h = h[k];
+  s.e = s.h + b[k];
+  const real u = velocity(s.h, qx[k], p->h_dry);
+  const real v = velocity(s.h, qy[k], p->h_dry);
+  s.un = dir == 0 ? u : v;
+  s.ut = dir == 0 ? v : u;
+  return s;
+}
+
+/// MUSCL reconstruction of cell C from its neighbours M (minus side) and P (plus side) along the
+/// direction. A neighbour outside the domain gives a zero slope (first order next to boundaries),
+/// which is also what the limiter returns for a mirrored ghost cell's thickness and surface.
+inline CellFaces reconstruct(Prim m, int m_in, Prim c, Prim pl, int p_in) {
+  CellFaces f;
+  real sh = 0, se = 0, su = 0, sv = 0;
+  if (m_in && p_in) {
+    sh = limited_slope(c.h - m.h, pl.h - c.h);
+    se = limited_slope(c.e - m.e, pl.e - c.e);
+    su = limited_slope(c.un - m.un, pl.un - c.un);
+    sv = limited_slope(c.ut - m.ut, pl.ut - c.ut);
+  }
+  f.h_lo = c.h - (real)0.5 * sh;
+  f.h_hi = c.h + (real)0.5 * sh;
+  f.e_lo = c.e - (real)0.5 * se;
+  f.e_hi = c.e + (real)0.5 * se;
+  f.un_lo = c.un - (real)0.5 * su;
+  f.un_hi = c.un + (real)0.5 * su;
+  f.ut_lo = c.ut - (real)0.5 * sv;
+  f.ut_hi = c.ut + (real)0.5 * sv;
+  return f;
+}
+
+#endif

@@ -1,0 +1,21 @@
+// Basal Manning friction, applied after the flux step with a semi-implicit (linearised) update
+// (spec §4, OpenLISEM Hazard P.46): dq/dt = -g n^2 |u| q / h^(4/3), so
+//   q_new = q / (1 + dt g n^2 |u| / h^(4/3)),
+// which can slow a flow to rest but never reverses it.
+#include "flow/flow_common.cl"
+
+__kernel void flow_friction(__constant const FlowParams* p, __global const uchar* mask, __global const int* tile_active,
+                            __global const real* manning, __global const real* h, __global real* qx,
+                            __global real* qy, const real dt) {
+  const int i = get_global_id(0), j = get_global_id(1);
+  if (i >= p->nx || j >= p->ny) return;
+  if (!cell_inside(p, mask, i, j) || !cell_active(p, tile_active, i, j)) return;
+  const int k = cell_index(p, i, j);
+  const real hk = h[k], n = manning[k];
+  if (hk <= p->h_dry || n <= (real)0) return;
+  const real u = velocity(hk, qx[k], p->h_dry), v = velocity(hk, qy[k], p->h_dry);
+  const real speed = sqrt(u * u + v * v);
+  const real factor = (real)1 + dt * GRAVITY * n * n * speed / pow(hk, (real)(4.0 / 3.0));
+  qx[k] /= factor;
+  qy[k] /= factor;
+}

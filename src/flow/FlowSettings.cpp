@@ -1,0 +1,33 @@
+#include "flow/FlowSettings.hpp"
+
+#include "core/Error.hpp"
+
+namespace talus::flow {
+
+Limiter parseLimiter(const std::string& name) {
+  if (name == "minmod") return Limiter::Minmod;
+  if (name == "vanleer") return Limiter::VanLeer;
+  if (name == "mc") return Limiter::MC;
+  if (name == "none") return Limiter::None;
+  throw InputError("limiter '" + name + "' is not one of: minmod, vanleer, mc, none");
+}
+
+RiemannSolver parseRiemann(const std::string& name) {
+  if (name == "hll") return RiemannSolver::HLL;
+  if (name == "hllc") return RiemannSolver::HLLC;
+  throw InputError("Riemann solver '" + name + "' is not one of: hll, hllc");
+}
+
+Boundary parseBoundary(const std::string& name) {
+  if (name == "wall") return Boundary::Wall;
+  if (name == "open") return Boundary::Open;
+  throw InputError("boundary type '" + name + "' is not one of: open, wall");
+}
+
+DepthPressure parseDepthPressure(const std::string& name) {
+  if (name == "cos2") return DepthPressure::Cos2;
+  if (name == "cos4") return DepthPressure::Cos4;
+  throw InputError("depth pressure '" + name + "' is not one of: cos2, cos4");
+}
+
+}  // namespace talus::flow

@@ -1,0 +1,197 @@
+#include "flow/FlowSolver.hpp"
+
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <string>
+
+#include "compute/Program.hpp"
+#include "core/Error.hpp"
+#include "flow/FlowParams.hpp"
+#include "flow/SlopeGravity.hpp"
+
+namespace talus::flow {
+namespace {
+
+constexpr int kFaceComponents = 6;     // see kernels/flow/flux.cl
+constexpr int kDiagnosticRows = 5;     // see kernels/flow/diagnostics.cl
+const compute::Range kLocal2D{kTile, kTile};
+
+std::string buildOptions(const FlowSettings& s) {
+  return "-DLIMITER=" + std::to_string(static_cast<int>(s.limiter)) +
+         " -DRIEMANN=" + std::to_string(static_cast<int>(s.riemann)) + " -DTILE=" + std::to_string(kTile);
+}
+
+template <class Real>
+void writeParams(compute::RawBuffer& buf, const Grid& g, int tx, int ty, const FlowSettings& s) {
+  FlowParamsT<Real> p{};
+  p.nx = g.nx;
+  p.ny = g.ny;
+  p.tilesX = tx;
+  p.tilesY = ty;
+  p.edgeBoundary = static_cast<int32_t>(s.edge);
+  p.nodataBoundary = static_cast<int32_t>(s.nodata);
+  p.skipDryTiles = s.skipDryTiles ? 1 : 0;
+  p.dx = static_cast<Real>(g.dx);
+  p.hDry = static_cast<Real>(s.hDry);
+  p.arrivalH = static_cast<Real>(s.arrivalH);
+  buf.writeBytes(&p, sizeof p);
+}
+
+}  // namespace
+
+FlowSolver::FlowSolver(compute::Context& ctx, const Grid& grid, const FlowSettings& settings)
+    : ctx_(ctx),
+      grid_(grid),
+      settings_(settings),
+      tilesX_((grid.nx + kTile - 1) / kTile),
+      tilesY_((grid.ny + kTile - 1) / kTile),
+      params_(ctx, sizeof(FlowParamsT<double>), "flow parameters"),
+      mask_(ctx, grid.cells(), "mask"),
+      tileActive_(ctx, static_cast<std::size_t>(tilesX_) * tilesY_, "tile active"),
+      tileWet_(ctx, static_cast<std::size_t>(tilesX_) * tilesY_, "tile wet"),
+      bed_(ctx, grid.cells(), "bed"),
+      gp_(ctx, grid.cells(), "g_p"),
+      gn_(ctx, grid.cells(), "g_n"),
+      manning_(ctx, grid.cells(), "manning"),
+      h_(ctx, grid.cells(), "h"),
+      qx_(ctx, grid.cells(), "qx"),
+      qy_(ctx, grid.cells(), "qy"),
+      h1_(ctx, grid.cells(), "h stage"),
+      qx1_(ctx, grid.cells(), "qx stage"),
+      qy1_(ctx, grid.cells(), "qy stage"),
+      faceX_(ctx, kFaceComponents * static_cast<std::size_t>(grid.nx + 1) * grid.ny, "x faces"),
+      faceY_(ctx, kFaceComponents * static_cast<std::size_t>(grid.nx) * (grid.ny + 1), "y faces"),
+      outStep_(ctx, grid.cells(), "outflow per step"),
+      partial_(ctx, kDiagnosticRows * static_cast<std::size_t>(tilesX_) * tilesY_, "tile partials"),
+      hMax_(ctx, grid.cells(), "h max"),
+      vMax_(ctx, grid.cells(), "v max"),
+      arrival_(ctx, grid.cells(), "arrival"),
+      reducer_(ctx) {
+  if (grid.nx < 1 || grid.ny < 1 || !(grid.dx > 0)) throw InputError("flow solver needs a grid of at least 1x1 cells");
+  if (!(settings.cfl > 0 && settings.cfl <= 1)) throw InputError("CFL must lie in (0, 1]");
+  const std::string opts = buildOptions(settings);
+  faceFlux_ = compute::Kernel(ctx.program("flow/flux.cl", opts), "flow_face_flux");
+  update_ = compute::Kernel(ctx.program("flow/update.cl", opts), "flow_update");
+  friction_ = compute::Kernel(ctx.program("flow/friction.cl", opts), "flow_friction");
+  track_ = compute::Kernel(ctx.program("flow/track.cl", opts), "flow_track_maxima");
+  diagnostics_ = compute::Kernel(ctx.program("flow/diagnostics.cl", opts), "flow_tile_diagnostics");
+  activate_ = compute::Kernel(ctx.program("flow/diagnostics.cl", opts), "flow_activate_tiles");
+  if (ctx.precision() == compute::Precision::Double)
+    writeParams<double>(params_, grid, tilesX_, tilesY_, settings);
+  else
+    writeParams<float>(params_, grid, tilesX_, tilesY_, settings);
+  outStep_.fill(0.0);
+}
+
+void FlowSolver::setInput(const FlowInput& in) {
+  const std::size_t n = grid_.cells();
+  auto need = [&](std::size_t size, const char* what) {
+    if (size != n) throw InputError(std::string("flow input '") + what + "' has " + std::to_string(size) +
+                                    " values, the grid has " + std::to_string(n));
+  };
+  need(in.mask.size(), "mask");
+  need(in.bed.size(), "bed");
+  need(in.manning.size(), "manning");
+  need(in.h.size(), "h");
+  mask_.write(in.mask);
+  // Outside cells carry no water; their bed value is never read.
+  std::vector<double> h = in.h, bed = in.bed;
+  for (std::size_t k = 0; k < n; ++k)
+    if (!in.mask[k]) h[k] = 0.0, bed[k] = 0.0;
+  bed_.upload(bed);
+  manning_.upload(in.manning);
+  const SlopeGravity sg = computeSlopeGravity(grid_, bed, in.mask, settings_);
+  gp_.upload(sg.gp);
+  gn_.upload(sg.gn);
+  h_.upload(h);
+  if (in.qx.empty()) qx_.fill(0.0); else need(in.qx.size(), "qx"), qx_.upload(in.qx);
+  if (in.qy.empty()) qy_.fill(0.0); else need(in.qy.size(), "qy"), qy_.upload(in.qy);
+  h1_.fill(0.0);
+  qx1_.fill(0.0);
+  qy1_.fill(0.0);
+  faceX_.fill(0.0);
+  faceY_.fill(0.0);
+  outStep_.fill(0.0);
+  hMax_.upload(h);
+  vMax_.fill(0.0);
+  arrival_.fill(-1.0);
+  time_ = 0.0;
+  tileActive_.fill(1);
+  enqueueTrackMaxima();
+  computeDiagnostics();
+}
+
+double FlowSolver::stableDt() const {
+  if (std::isnan(diag_.maxSpeed)) return std::numeric_limits<double>::quiet_NaN();
+  if (diag_.maxSpeed <= 0) return std::numeric_limits<double>::infinity();
+  return settings_.cfl * grid_.dx / diag_.maxSpeed;
+}
+
+void FlowSolver::step(double dt) {
+  if (!(dt > 0) || !std::isfinite(dt)) throw SimulationError("flow step with invalid dt " + std::to_string(dt));
+  enqueueFaceFluxes(h_, qx_, qy_);
+  enqueueUpdate(h_, qx_, qy_, h1_, qx1_, qy1_, dt, 0.0, true);
+  enqueueFaceFluxes(h1_, qx1_, qy1_);
+  enqueueUpdate(h1_, qx1_, qy1_, h_, qx_, qy_, dt, 0.5, false);
+  enqueueFriction(dt);
+  time_ += dt;
+  enqueueTrackMaxima();
+  computeDiagnostics();
+}
+
+void FlowSolver::enqueueFaceFluxes(const compute::RealBuffer& h, const compute::RealBuffer& qx,
+                                   const compute::RealBuffer& qy) {
+  faceFlux_.bind(params_, 0, mask_, tileActive_, h, qx, qy, bed_, gp_, faceX_);
+  faceFlux_.launch({static_cast<std::size_t>(grid_.nx + 1), static_cast<std::size_t>(grid_.ny)}, kLocal2D,
+                   "flow_face_flux_x");
+  faceFlux_.bind(params_, 1, mask_, tileActive_, h, qx, qy, bed_, gp_, faceY_);
+  faceFlux_.launch({static_cast<std::size_t>(grid_.nx), static_cast<std::size_t>(grid_.ny + 1)}, kLocal2D,
+                   "flow_face_flux_y");
+}
+
+void FlowSolver::enqueueUpdate(const compute::RealBuffer& hSt, const compute::RealBuffer& qxSt,
+                               const compute::RealBuffer& qySt, compute::RealBuffer& hOut,
+                               compute::RealBuffer& qxOut, compute::RealBuffer& qyOut, double dt, double a,
+                               bool firstStage) {
+  // Base state of the RK combination is always U0 (h_, qx_, qy_); in stage 2 the output is U0 too,
+  // which is safe because each work-item reads its own cell's base value before writing it.
+  update_.bind(params_, mask_, tileActive_, faceX_, faceY_, bed_, gp_, gn_, h_, qx_, qy_, hSt, qxSt, qySt, hOut,
+               qxOut, qyOut, outStep_, compute::RealArg{dt}, compute::RealArg{a}, compute::RealArg{0.5 * dt},
+               firstStage ? 1 : 0);
+  update_.launch({static_cast<std::size_t>(grid_.nx), static_cast<std::size_t>(grid_.ny)}, kLocal2D);
+}
+
+void FlowSolver::enqueueFriction(double dt) {
+  friction_.bind(params_, mask_, tileActive_, manning_, h_, qx_, qy_, compute::RealArg{dt});
+  friction_.launch({static_cast<std::size_t>(grid_.nx), static_cast<std::size_t>(grid_.ny)}, kLocal2D);
+}
+
+void FlowSolver::enqueueTrackMaxima() {
+  track_.bind(params_, mask_, tileActive_, h_, qx_, qy_, hMax_, vMax_, arrival_, compute::RealArg{time_});
+  track_.launch({static_cast<std::size_t>(grid_.nx), static_cast<std::size_t>(grid_.ny)}, kLocal2D);
+}
+
+void FlowSolver::computeDiagnostics() {
+  diagnostics_.bind(params_, mask_, tileActive_, h_, qx_, qy_, gp_, outStep_, partial_, tileWet_);
+  diagnostics_.launch({static_cast<std::size_t>(tilesX_) * kTile, static_cast<std::size_t>(tilesY_) * kTile},
+                      kLocal2D);
+  using compute::ReduceOp;
+  const std::vector<double> r = reducer_.reduceRows(
+      partial_, static_cast<std::size_t>(tilesX_) * tilesY_,
+      {ReduceOp::Max, ReduceOp::Sum, ReduceOp::Sum, ReduceOp::Sum, ReduceOp::Min});
+  diag_.maxSpeed = r[0];
+  diag_.volume = r[1];
+  diag_.outflow = r[2];
+  diag_.kinetic = r[3];
+  diag_.minH = r[4];
+  activate_.bind(params_, tileWet_, tileActive_);
+  activate_.launch({static_cast<std::size_t>(tilesX_), static_cast<std::size_t>(tilesY_)});
+}
+
+int FlowSolver::activeTiles() const {
+  const std::vector<int> a = tileActive_.read();
+  return std::accumulate(a.begin(), a.end(), 0);
+}
+
+}  // namespace talus::flow

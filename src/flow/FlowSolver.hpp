@@ -1,0 +1,93 @@
+// The shallow-water grid solver on the device (spec §4 with h_s = 0, numerics in docs/numerics.md).
+// One step is a short list of named phases:
+//   stage 1: faces(U0) -> update(U1 = U0 + dt L(U0))
+//   stage 2: faces(U1) -> update(U0 = U0/2 + (U1 + dt L(U1))/2)     (SSP-RK2)
+//   friction (semi-implicit Manning) -> maxima -> diagnostics and next active tiles.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "compute/Buffer.hpp"
+#include "compute/Context.hpp"
+#include "compute/Kernel.hpp"
+#include "compute/Reducer.hpp"
+#include "core/Grid.hpp"
+#include "flow/FlowSettings.hpp"
+
+namespace talus::flow {
+
+/// The fields that define a shallow-water scene (all on `grid`, row-major, SI units).
+struct FlowInput {
+  std::vector<uint8_t> mask;    ///< 1 inside the domain, 0 nodata
+  std::vector<double> bed;      ///< b [m]
+  std::vector<double> manning;  ///< n [s m^-1/3]
+  std::vector<double> h;        ///< vertical thickness [m]
+  std::vector<double> qx, qy;   ///< discharge per unit width [m^2/s] (empty: at rest)
+};
+
+/// Reduced quantities after the last step (or after setInput).
+struct FlowDiagnostics {
+  double maxSpeed = 0;   ///< max over cells of (|u| + c) + (|v| + c) [m/s]
+  double volume = 0;     ///< [m^3]
+  double outflow = 0;    ///< volume that left through boundary faces in the last step [m^3]
+  double kinetic = 0;    ///< kinetic energy per unit density, sum h |u|^2 / 2 dx^2 [m^5/s^2]
+  double minH = 0;       ///< smallest thickness inside the domain (active tiles) [m]
+};
+
+class FlowSolver {
+ public:
+  FlowSolver(compute::Context& ctx, const Grid& grid, const FlowSettings& settings);
+
+  /// Uploads a scene, resets time, maxima and arrival, and computes the first diagnostics.
+  void setInput(const FlowInput& in);
+  /// The CFL time step of the current state (infinite when everything is at rest and dry).
+  double stableDt() const;
+  /// Advances by dt (caller keeps dt <= stableDt()).
+  void step(double dt);
+
+  double time() const { return time_; }
+  void setTime(double t) { time_ = t; }
+  const FlowDiagnostics& diagnostics() const { return diag_; }
+  const Grid& grid() const { return grid_; }
+  const FlowSettings& settings() const { return settings_; }
+  /// Number of tiles the next step will update, and the total number of tiles.
+  int activeTiles() const;
+  int tileCount() const { return tilesX_ * tilesY_; }
+
+  std::vector<double> h() const { return h_.download(); }
+  std::vector<double> qx() const { return qx_.download(); }
+  std::vector<double> qy() const { return qy_.download(); }
+  std::vector<double> hMax() const { return hMax_.download(); }
+  std::vector<double> vMax() const { return vMax_.download(); }
+  std::vector<double> arrival() const { return arrival_.download(); }
+  /// Slope-corrected gravities as uploaded (for tests).
+  std::vector<double> gp() const { return gp_.download(); }
+
+ private:
+  void enqueueFaceFluxes(const compute::RealBuffer& h, const compute::RealBuffer& qx, const compute::RealBuffer& qy);
+  void enqueueUpdate(const compute::RealBuffer& hSt, const compute::RealBuffer& qxSt, const compute::RealBuffer& qySt,
+                     compute::RealBuffer& hOut, compute::RealBuffer& qxOut, compute::RealBuffer& qyOut, double dt,
+                     double a, bool firstStage);
+  void enqueueFriction(double dt);
+  void enqueueTrackMaxima();
+  void computeDiagnostics();
+
+  compute::Context& ctx_;
+  Grid grid_;
+  FlowSettings settings_;
+  int tilesX_, tilesY_;
+  double time_ = 0.0;
+  FlowDiagnostics diag_;
+
+  compute::RawBuffer params_;
+  compute::Buffer<uint8_t> mask_;
+  compute::Buffer<int> tileActive_, tileWet_;
+  compute::RealBuffer bed_, gp_, gn_, manning_;
+  compute::RealBuffer h_, qx_, qy_, h1_, qx1_, qy1_;
+  compute::RealBuffer faceX_, faceY_, outStep_, partial_;
+  compute::RealBuffer hMax_, vMax_, arrival_;
+  compute::Reducer reducer_;
+  compute::Kernel faceFlux_, update_, friction_, track_, diagnostics_, activate_;
+};
+
+}  // namespace talus::flow
