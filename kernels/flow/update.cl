@@ -6,7 +6,8 @@
 //   dt/dx * [ g_p (P_E + c_E^-) - g_p (P_W + c_W^+) - g_p (h_W+ + h_E-)/2 (b_E- - b_W+) ],
 // with P the HLL pressure flux and c the hydrostatic corrections, and the centred term
 // (g_p - g_n) h db/dx that is zero unless the cos^4 depth-pressure option makes g_p differ from g_n.
-// Mass that leaves through boundary faces is added to out_step[cell] with weight w_out (dt/2 per stage).
+// The volume that leaves through boundary faces [m^3] is added to out_step[cell] with weight w_out
+// (dt/2 per stage).
 #include "flow/flow_common.cl"
 
 #define FACE_COMPONENTS 6
@@ -88,6 +89,8 @@ __kernel void flow_update(__constant const FlowParams* p, __global const uchar* 
   if (!cell_inside(p, mask, i + 1, j)) out += fhe;
   if (!cell_inside(p, mask, i, j - 1)) out -= fhs;
   if (!cell_inside(p, mask, i, j + 1)) out += fhn;
-  if (first_stage) out_step[k] = w_out * out;
-  else out_step[k] += w_out * out;
+  // Face fluxes are per unit width: the volume through a face is flux * dx * time.
+  out *= w_out * p->dx;
+  if (first_stage) out_step[k] = out;
+  else out_step[k] += out;
 }

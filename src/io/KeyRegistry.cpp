@@ -1,0 +1,171 @@
+// Declared run-file keys: registration, lookup, spelling suggestions and the Markdown key table.
+#include "io/KeyRegistry.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+#include <utility>
+
+namespace talus::io {
+
+namespace {
+
+/// Lowercase copy of an ASCII string.
+std::string lower(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+/// Levenshtein edit distance between two strings (insertions, deletions, substitutions).
+std::size_t editDistance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t above = row[j];
+      const std::size_t substitution = diagonal + (a[i - 1] == b[j - 1] ? 0 : 1);
+      row[j] = std::min({row[j - 1] + 1, above + 1, substitution});
+      diagonal = above;
+    }
+  }
+  return row[b.size()];
+}
+
+/// A table cell with '|' escaped.
+std::string cell(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    if (c == '|') out += '\\';
+    out += c;
+  }
+  return out;
+}
+
+}  // namespace
+
+std::string keyTypeName(KeyType type) {
+  switch (type) {
+    case KeyType::Flag: return "flag";
+    case KeyType::Integer: return "integer";
+    case KeyType::Real: return "real";
+    case KeyType::Choice: return "choice";
+    case KeyType::Text: return "text";
+    case KeyType::Directory: return "directory";
+    case KeyType::Map: return "map";
+  }
+  return "?";
+}
+
+std::string normalizeKeyName(const std::string& name) {
+  std::string out;
+  bool pendingSpace = false;
+  for (char c : name) {
+    if (std::isspace(static_cast<unsigned char>(c))) {
+      pendingSpace = !out.empty();
+      continue;
+    }
+    if (pendingSpace) out += ' ';
+    pendingSpace = false;
+    out += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  }
+  return out;
+}
+
+std::string formatNumber(double value) {
+  std::ostringstream os;
+  os.precision(15);
+  os << value;
+  return os.str();
+}
+
+std::string rangeText(const KeySpec& spec) {
+  const bool hasMin = std::isfinite(spec.min), hasMax = std::isfinite(spec.max);
+  if (hasMin && hasMax) return "[" + formatNumber(spec.min) + ", " + formatNumber(spec.max) + "]";
+  if (hasMin) return ">= " + formatNumber(spec.min);
+  if (hasMax) return "<= " + formatNumber(spec.max);
+  return "";
+}
+
+KeyRegistry& KeyRegistry::add(KeySpec spec) {
+  const std::string key = normalizeKeyName(spec.name);
+  if (key.empty()) throw std::logic_error("KeyRegistry::add: a key needs a name");
+  if (index_.count(key)) throw std::logic_error("KeyRegistry::add: key '" + spec.name + "' declared twice");
+  if (spec.type == KeyType::Choice) {
+    if (spec.choices.empty())
+      throw std::logic_error("KeyRegistry::add: choice key '" + spec.name + "' has no choices");
+    for (auto& c : spec.choices) c = lower(c);
+    if (!spec.required &&
+        std::find(spec.choices.begin(), spec.choices.end(), lower(spec.defaultValue)) == spec.choices.end())
+      throw std::logic_error("KeyRegistry::add: default of choice key '" + spec.name + "' is not a choice");
+  }
+  index_.emplace(key, keys_.size());
+  keys_.push_back(std::move(spec));
+  return *this;
+}
+
+KeyRegistry& KeyRegistry::addRule(std::vector<std::string> keys, KeyCheck check) {
+  for (const auto& k : keys)
+    if (!find(k)) throw std::logic_error("KeyRegistry::addRule: undeclared key '" + k + "'");
+  rules_.push_back({std::move(keys), std::move(check)});
+  return *this;
+}
+
+const KeySpec* KeyRegistry::find(const std::string& name) const {
+  const int i = indexOf(name);
+  return i < 0 ? nullptr : &keys_[static_cast<std::size_t>(i)];
+}
+
+int KeyRegistry::indexOf(const std::string& name) const {
+  const auto it = index_.find(normalizeKeyName(name));
+  return it == index_.end() ? -1 : static_cast<int>(it->second);
+}
+
+std::vector<std::string> KeyRegistry::suggestions(const std::string& misspelt) const {
+  const std::string wanted = normalizeKeyName(misspelt);
+  const std::size_t limit = std::max<std::size_t>(2, wanted.size() / 4);
+  std::vector<std::pair<std::size_t, std::size_t>> hits;  // (distance, key position)
+  for (std::size_t i = 0; i < keys_.size(); ++i) {
+    const std::size_t d = editDistance(wanted, normalizeKeyName(keys_[i].name));
+    if (d <= limit) hits.emplace_back(d, i);
+  }
+  std::stable_sort(hits.begin(), hits.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<std::string> names;
+  for (const auto& h : hits) names.push_back(keys_[h.second].name);
+  return names;
+}
+
+std::string KeyRegistry::markdownTable() const {
+  std::vector<std::string> sections;
+  for (const auto& k : keys_)
+    if (std::find(sections.begin(), sections.end(), k.section) == sections.end())
+      sections.push_back(k.section);
+  std::ostringstream os;
+  for (const auto& section : sections) {
+    os << "### " << (section.empty() ? "Other" : section) << "\n\n"
+       << "| Key | Type | Default | Unit | Range | Description |\n"
+       << "|---|---|---|---|---|---|\n";
+    for (const auto& k : keys_) {
+      if (k.section != section) continue;
+      std::string type = keyTypeName(k.type);
+      if (k.type == KeyType::Choice) {
+        type += ": ";
+        for (std::size_t i = 0; i < k.choices.size(); ++i) type += (i ? ", " : "") + k.choices[i];
+      }
+      std::string def = k.required ? "(required)" : k.defaultValue;
+      if (!k.required && k.defaultValue.empty()) def = "(empty)";
+      os << "| `" << k.name << "` | " << cell(type) << " | " << cell(def) << " | " << cell(k.unit)
+         << " | " << cell(rangeText(k)) << " | " << cell(k.help) << " |\n";
+    }
+    os << "\n";
+  }
+  return os.str();
+}
+
+std::string describeKeys(const KeyRegistry& keys) { return keys.markdownTable(); }
+
+}  // namespace talus::io

@@ -1,0 +1,322 @@
+// Raster file input/output through GDAL: reading band 1 of any GDAL raster into talus::Raster with
+// validation of the georeference, grid comparison with readable errors, and atomic writing of
+// GeoTIFF (deflate, tiled) and PCRaster maps. The only translation unit of the engine using GDAL.
+#include "io/RasterIO.hpp"
+
+#include <gdal_priv.h>
+#include <cpl_conv.h>
+#include <cpl_error.h>
+#include <cpl_string.h>
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cmath>
+#include <filesystem>
+#include <mutex>
+#include <new>
+#include <sstream>
+#include <stdexcept>
+#include <system_error>
+#include <vector>
+
+#ifdef _WIN32
+#include <process.h>
+#define TALUS_GETPID _getpid
+#else
+#include <unistd.h>
+#define TALUS_GETPID getpid
+#endif
+
+#include "core/Error.hpp"
+
+namespace fs = std::filesystem;
+
+namespace talus::io {
+namespace {
+
+/// Largest raster readRaster accepts: 2^31 cells (about 19 GB as values plus mask).
+constexpr unsigned long long kMaxCells = 1ull << 31;
+
+void ensureGdalRegistered() {
+  static std::once_flag once;
+  std::call_once(once, [] { GDALAllRegister(); });
+}
+
+/// While alive, routes this thread's GDAL errors away from stderr and collects the failure
+/// messages, so they can be put into our exception text.
+class GdalErrorScope {
+ public:
+  GdalErrorScope() {
+    CPLErrorReset();
+    CPLPushErrorHandlerEx(&GdalErrorScope::handler, this);
+  }
+  ~GdalErrorScope() { CPLPopErrorHandler(); }
+  GdalErrorScope(const GdalErrorScope&) = delete;
+  GdalErrorScope& operator=(const GdalErrorScope&) = delete;
+
+  /// True once GDAL reported a failure (CE_Failure or CE_Fatal) inside this scope.
+  bool failed() const { return failures_ > 0; }
+
+  /// The collected failure messages, else GDAL's last message, else the fallback text.
+  std::string describe(const std::string& fallback) const {
+    if (!messages_.empty()) return messages_;
+    const char* last = CPLGetLastErrorMsg();
+    if (last != nullptr && *last != '\0') return last;
+    return fallback;
+  }
+
+ private:
+  static void CPL_STDCALL handler(CPLErr cls, CPLErrorNum /*num*/, const char* msg) {
+    auto* self = static_cast<GdalErrorScope*>(CPLGetErrorHandlerUserData());
+    if (self == nullptr || (cls != CE_Failure && cls != CE_Fatal)) return;
+    ++self->failures_;
+    if (self->failures_ > 3 || msg == nullptr) return;  // the first few say enough
+    if (!self->messages_.empty()) self->messages_ += "; ";
+    self->messages_ += msg;
+  }
+
+  int failures_ = 0;
+  std::string messages_;
+};
+
+bool isVirtualPath(const std::string& path) { return path.rfind("/vsi", 0) == 0; }
+
+/// Grid description for error messages: "100x80 cells of 5 m at (x0, y0)".
+std::string describeGrid(const Grid& g) {
+  std::ostringstream s;
+  s.precision(12);
+  s << g.nx << "x" << g.ny << " cells of " << g.dx << " m at (" << g.geoTransform[0] << ", "
+    << g.geoTransform[3] << ")";
+  return s.str();
+}
+
+std::string mapName(const std::string& path) { return fs::path(path).stem().string(); }
+
+/// Removes a file if it is there, ignoring errors (used for clean-up on failure).
+void removeQuietly(const std::string& path) {
+  std::error_code ec;
+  fs::remove(path, ec);
+}
+
+/// The cell values to write: r.values with r.nodata in the invalid cells.
+std::vector<double> valuesForWriting(const Raster& r) {
+  std::vector<double> out(r.values);
+  if (!r.valid.empty()) {
+    for (std::size_t k = 0; k < out.size(); ++k) {
+      if (r.valid[k] == 0) out[k] = r.nodata;
+    }
+  }
+  return out;
+}
+
+/// Fills band 1 of ds with the values of r and sets georeference, projection and nodata.
+void fillDataset(GDALDataset& ds, const Raster& r, const std::string& path) {
+  std::vector<double> data = valuesForWriting(r);
+  GDALRasterBand* band = ds.GetRasterBand(1);
+  if (band->RasterIO(GF_Write, 0, 0, r.grid.nx, r.grid.ny, data.data(), r.grid.nx, r.grid.ny,
+                     GDT_Float64, 0, 0, nullptr) != CE_None) {
+    throw InputError("cannot write raster '" + path + "': " + CPLGetLastErrorMsg());
+  }
+  std::array<double, 6> gt = r.grid.geoTransform;
+  if (ds.SetGeoTransform(gt.data()) != CE_None) {
+    throw InputError("cannot set the georeference of '" + path + "': " + CPLGetLastErrorMsg());
+  }
+  if (!r.grid.projectionWkt.empty() && ds.SetProjection(r.grid.projectionWkt.c_str()) != CE_None) {
+    throw InputError("cannot set the projection of '" + path + "': " + CPLGetLastErrorMsg());
+  }
+  if (band->SetNoDataValue(r.nodata) != CE_None) {
+    throw InputError("cannot set the nodata value of '" + path + "': " + CPLGetLastErrorMsg());
+  }
+}
+
+GDALDriver* driverOrThrow(const char* name, const std::string& path) {
+  GDALDriver* driver = GetGDALDriverManager()->GetDriverByName(name);
+  if (driver == nullptr) {
+    throw InputError(std::string("cannot write raster '") + path + "': GDAL has no " + name + " driver");
+  }
+  return driver;
+}
+
+/// Writes the GeoTIFF or PCRaster file tmpPath (GDAL closes it before returning).
+void writeWithGdal(const std::string& tmpPath, const std::string& path, const Raster& r,
+                   RasterFormat format, bool asFloat64, const GdalErrorScope& errors) {
+  const Grid& g = r.grid;
+  if (format == RasterFormat::GeoTiff) {
+    GDALDriver* gtiff = driverOrThrow("GTiff", path);
+    CPLStringList options;
+    options.SetNameValue("COMPRESS", "DEFLATE");
+    options.SetNameValue("TILED", "YES");
+    options.SetNameValue("BIGTIFF", "IF_SAFER");
+    GDALDatasetUniquePtr ds(gtiff->Create(tmpPath.c_str(), g.nx, g.ny, 1,
+                                          asFloat64 ? GDT_Float64 : GDT_Float32, options.List()));
+    if (!ds) {
+      throw InputError("cannot create raster '" + path + "': " + errors.describe("GDAL Create failed"));
+    }
+    fillDataset(*ds, r, path);
+    ds.reset();  // GDALClose: flushes and compresses the last tiles
+  } else {
+    // The PCRaster driver only supports CreateCopy: build the map in memory first.
+    GDALDriver* mem = driverOrThrow("MEM", path);
+    GDALDriver* pcraster = driverOrThrow("PCRaster", path);
+    GDALDatasetUniquePtr src(mem->Create("", g.nx, g.ny, 1, GDT_Float32, nullptr));
+    if (!src) {
+      throw InputError("cannot build raster '" + path + "' in memory: " +
+                       errors.describe("GDAL MEM Create failed"));
+    }
+    fillDataset(*src, r, path);
+    CPLStringList options;
+    options.SetNameValue("PCRASTER_VALUESCALE", "VS_SCALAR");
+    GDALDatasetUniquePtr ds(
+        pcraster->CreateCopy(tmpPath.c_str(), src.get(), FALSE, options.List(), nullptr, nullptr));
+    if (!ds) {
+      throw InputError("cannot create raster '" + path + "': " +
+                       errors.describe("GDAL PCRaster CreateCopy failed"));
+    }
+    ds.reset();
+  }
+  if (errors.failed()) {
+    throw InputError("cannot write raster '" + path + "': " + errors.describe("GDAL write failed"));
+  }
+}
+
+}  // namespace
+
+Raster readRaster(const std::string& path) {
+  ensureGdalRegistered();
+  if (!isVirtualPath(path)) {
+    std::error_code ec;
+    if (!fs::exists(path, ec)) throw InputError("raster file '" + path + "' does not exist");
+  }
+  GdalErrorScope errors;
+  GDALDatasetUniquePtr ds(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
+  if (!ds) {
+    throw InputError("cannot open raster '" + path +
+                     "': " + errors.describe("not a raster format GDAL recognises"));
+  }
+  if (ds->GetRasterCount() < 1) throw InputError("file '" + path + "' holds no raster band");
+
+  const int nx = ds->GetRasterXSize();
+  const int ny = ds->GetRasterYSize();
+  if (nx <= 0 || ny <= 0) throw InputError("raster '" + path + "' has no cells");
+  const unsigned long long cells = static_cast<unsigned long long>(nx) * static_cast<unsigned long long>(ny);
+  if (cells > kMaxCells) {
+    throw InputError("raster '" + path + "' is too large: " + std::to_string(nx) + "x" +
+                     std::to_string(ny) + " cells (at most " + std::to_string(kMaxCells) + ")");
+  }
+
+  std::array<double, 6> gt{};
+  if (ds->GetGeoTransform(gt.data()) != CE_None) {
+    throw InputError("raster '" + path + "' has no georeference (geotransform), so no cell size");
+  }
+  if (gt[2] != 0.0 || gt[4] != 0.0) {
+    throw InputError("raster '" + path + "' has a rotated geotransform, which is not supported");
+  }
+  const double width = gt[1];
+  const double height = -gt[5];  // north-up rasters have a negative pixel height
+  if (!std::isfinite(width) || !std::isfinite(height) || width <= 0.0 || height == 0.0) {
+    std::ostringstream s;
+    s << "raster '" << path << "' has a zero or negative cell size (width " << width + 0.0
+      << " m, height " << height + 0.0 << " m)";
+    throw InputError(s.str());
+  }
+  if (height < 0.0) {
+    throw InputError("raster '" + path + "' is south-up (positive pixel height), which is not supported");
+  }
+  if (std::fabs(width - height) > 1e-7 * std::max(width, height)) {
+    std::ostringstream s;
+    s.precision(12);
+    s << "raster '" << path << "' has non-square cells (" << width << " m wide, " << height
+      << " m high); resample it to square cells";
+    throw InputError(s.str());
+  }
+
+  Raster r;
+  r.grid.nx = nx;
+  r.grid.ny = ny;
+  r.grid.dx = width;
+  r.grid.geoTransform = gt;
+  const char* wkt = ds->GetProjectionRef();
+  r.grid.projectionWkt = wkt != nullptr ? wkt : "";
+  try {
+    r.values.resize(cells);
+    r.valid.assign(cells, 1);
+  } catch (const std::bad_alloc&) {
+    throw InputError("raster '" + path + "' is too large to load: " + std::to_string(cells) + " cells");
+  }
+
+  GDALRasterBand* band = ds->GetRasterBand(1);
+  if (band->RasterIO(GF_Read, 0, 0, nx, ny, r.values.data(), nx, ny, GDT_Float64, 0, 0, nullptr) !=
+          CE_None ||
+      errors.failed()) {
+    throw InputError("cannot read the data of raster '" + path + "' (truncated or corrupt?): " +
+                     errors.describe("GDAL read error"));
+  }
+
+  int hasNodata = 0;
+  const double nodata = band->GetNoDataValue(&hasNodata);
+  // Float32 files store the nodata value rounded to float; match that too.
+  const double nodataAsFloat = static_cast<double>(static_cast<float>(nodata));
+  const bool nodataIsNan = hasNodata != 0 && std::isnan(nodata);
+  if (hasNodata != 0 && !nodataIsNan) r.nodata = nodata;
+  for (std::size_t k = 0; k < r.values.size(); ++k) {
+    const double v = r.values[k];
+    if (!std::isfinite(v) || (hasNodata != 0 && (v == nodata || v == nodataAsFloat))) r.valid[k] = 0;
+  }
+  return r;
+}
+
+void requireSameGrid(const Raster& reference, const std::string& referencePath, const Raster& other,
+                     const std::string& otherPath) {
+  if (sameGrid(reference.grid, other.grid)) return;
+  throw InputError("map '" + mapName(otherPath) + "' (" + otherPath + ") does not share the grid of '" +
+                   mapName(referencePath) + "' (" + referencePath + "): " + describeGrid(other.grid) +
+                   " vs " + describeGrid(reference.grid));
+}
+
+void writeRaster(const std::string& path, const Raster& r, RasterFormat format, bool asFloat64) {
+  ensureGdalRegistered();
+  const Grid& g = r.grid;
+  if (g.nx <= 0 || g.ny <= 0 || r.values.size() != g.cells() ||
+      (!r.valid.empty() && r.valid.size() != g.cells())) {
+    throw std::invalid_argument("writeRaster('" + path + "'): raster values/mask do not match its " +
+                                std::to_string(g.nx) + "x" + std::to_string(g.ny) + " grid");
+  }
+  fs::path folder = fs::path(path).parent_path();
+  if (folder.empty()) folder = ".";
+  std::error_code ec;
+  if (!fs::is_directory(folder, ec)) {
+    throw InputError("cannot write raster '" + path + "': folder '" + folder.string() +
+                     "' does not exist or is not a folder");
+  }
+
+  const std::string tmpPath = path + ".tmp-" + std::to_string(static_cast<long>(TALUS_GETPID()));
+  const std::string tmpAux = tmpPath + ".aux.xml";
+  GdalErrorScope errors;
+  try {
+    writeWithGdal(tmpPath, path, r, format, asFloat64, errors);
+    fs::rename(tmpPath, path, ec);
+    if (ec) throw InputError("cannot move '" + tmpPath + "' to '" + path + "': " + ec.message());
+    // Side-car metadata GDAL may keep next to the file (e.g. the projection of a PCRaster map).
+    const std::string aux = path + ".aux.xml";
+    if (fs::exists(tmpAux, ec)) {
+      fs::rename(tmpAux, aux, ec);
+      if (ec) throw InputError("cannot move '" + tmpAux + "' to '" + aux + "': " + ec.message());
+    } else {
+      removeQuietly(aux);  // a stale side-car would describe the old file
+    }
+  } catch (...) {
+    removeQuietly(tmpPath);
+    removeQuietly(tmpAux);
+    throw;
+  }
+}
+
+RasterFormat formatForPath(const std::string& path) {
+  std::string ext = fs::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext == ".map" ? RasterFormat::PCRaster : RasterFormat::GeoTiff;
+}
+
+}  // namespace talus::io

@@ -1,0 +1,388 @@
+// Run-file parsing and validation: OpenLISEM Hazard syntax checked against declared keys, relative
+// paths resolved, every problem reported with file, line and key; echo() writes the resolved setup.
+#include "io/RunConfig.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <charconv>
+#include <climits>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include "core/Error.hpp"
+
+namespace talus::io {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr const char* kMapDirectoryKey = "Map Directory";
+constexpr long kRankCommandLine = LONG_MAX - 1;  // command-line problems come after the file's
+constexpr long kRankDefault = LONG_MAX;          // then missing keys and rules over defaults
+
+std::string trim(const std::string& s) {
+  std::size_t a = 0, b = s.size();
+  while (a < b && std::isspace(static_cast<unsigned char>(s[a]))) ++a;
+  while (b > a && std::isspace(static_cast<unsigned char>(s[b - 1]))) --b;
+  return s.substr(a, b - a);
+}
+
+std::string lower(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+/// Outcome of reading a number from text.
+enum class Number { Ok, NotANumber, NotFinite };
+
+/// Reads a whole string as a finite real number (C locale, optional leading '+').
+Number parseNumber(const std::string& text, double& value) {
+  std::string s = text;
+  if (s.size() > 1 && s[0] == '+' && s[1] != '-' && s[1] != '+') s.erase(0, 1);
+  if (s.empty()) return Number::NotANumber;
+  const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), value);
+  if (end != s.data() + s.size()) return Number::NotANumber;
+  if (ec == std::errc::result_out_of_range) return Number::NotFinite;
+  if (ec != std::errc()) return Number::NotANumber;
+  return std::isfinite(value) ? Number::Ok : Number::NotFinite;
+}
+
+/// An absolute, normalised path: value resolved against base (absolute values kept; backslashes
+/// read as folder separators; an empty value is base itself).
+std::string resolvePath(const std::string& base, std::string value) {
+  std::replace(value.begin(), value.end(), '\\', '/');
+  fs::path p = value.empty() ? fs::path(base) : fs::path(value);
+  if (p.is_relative()) p = fs::path(base) / p;
+  std::string s = p.lexically_normal().string();
+  while (s.size() > 1 && s.back() == '/') s.pop_back();
+  return s;
+}
+
+/// The unit of a key for messages: " m", " (dimensionless)" or "".
+std::string unitSuffix(const KeySpec& spec) {
+  if (spec.unit == "-") return " (dimensionless)";
+  return spec.unit.empty() ? "" : " " + spec.unit;
+}
+
+/// "" when v lies in the key's range, else the complaint.
+std::string checkRange(const KeySpec& spec, double v, double raw, double mult) {
+  if (v >= spec.min && v <= spec.max) return "";
+  std::string what = "value " + formatNumber(v);
+  if (mult != 1) what += " (" + formatNumber(raw) + " x multiplier " + formatNumber(mult) + ")";
+  return what + " is outside the valid range " + rangeText(spec) + unitSuffix(spec);
+}
+
+/// Splits "Value[=Multiplier]"; Text and Directory values take everything after the first '='.
+void splitValue(const KeySpec& spec, const std::string& rest, std::string& value, std::string& mult,
+                bool& hasMult) {
+  const std::size_t eq = rest.find('=');
+  hasMult = eq != std::string::npos && spec.type != KeyType::Text && spec.type != KeyType::Directory;
+  value = trim(hasMult ? rest.substr(0, eq) : rest);
+  mult = hasMult ? trim(rest.substr(eq + 1)) : "";
+}
+
+/// The "did you mean" part of an unknown-key message ("" without suggestions).
+std::string didYouMean(const KeyRegistry& keys, const std::string& name) {
+  const auto names = keys.suggestions(name);
+  if (names.empty()) return "";
+  const std::size_t shown = std::min<std::size_t>(names.size(), 3);
+  std::string s = "; did you mean ";
+  for (std::size_t i = 0; i < shown; ++i) {
+    if (i > 0) s += i + 1 == shown ? " or " : ", ";
+    s += "'" + names[i] + "'";
+  }
+  return s + "?";
+}
+
+std::string joinLines(std::vector<std::pair<long, std::string>> errors) {
+  std::stable_sort(errors.begin(), errors.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::string out;
+  for (const auto& e : errors) out += (out.empty() ? "" : "\n") + e.second;
+  return out;
+}
+
+}  // namespace
+
+RunConfig::RunConfig(const KeyRegistry& keys, std::string source, std::string baseDir)
+    : registry_(keys), source_(std::move(source)), entries_(keys.keys().size()) {
+  baseDir_ = resolvePath(fs::current_path().string(), std::move(baseDir));
+  for (std::size_t i = 0; i < entries_.size(); ++i) entries_[i].raw = keys.keys()[i].defaultValue;
+}
+
+RunConfig RunConfig::load(const std::string& runFilePath, const KeyRegistry& keys) {
+  std::error_code ec;
+  if (fs::is_directory(runFilePath, ec))
+    throw InputError("cannot read run-file '" + runFilePath + "': it is a folder");
+  std::ifstream in(runFilePath, std::ios::binary);
+  if (!in) throw InputError("cannot read run-file '" + runFilePath + "': " + std::strerror(errno));
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw InputError("cannot read run-file '" + runFilePath + "': read error");
+  const std::string folder = fs::absolute(fs::path(runFilePath)).parent_path().string();
+  return fromText(text.str(), folder, keys, runFilePath);
+}
+
+RunConfig RunConfig::fromText(const std::string& text, const std::string& baseDir, const KeyRegistry& keys,
+                              const std::string& displayName) {
+  RunConfig cfg(keys, displayName, baseDir);
+  std::vector<std::pair<long, std::string>> errors;
+  std::istringstream in(text);
+  std::string raw;
+  bool seenContent = false;
+  for (int n = 1; std::getline(in, raw); ++n) {
+    if (n == 1 && raw.rfind("\xEF\xBB\xBF", 0) == 0) raw.erase(0, 3);  // UTF-8 byte order mark
+    const std::string t = trim(raw);
+    if (t.empty() || t[0] == '#' || t[0] == ';') continue;
+    const std::string at = displayName + ":" + std::to_string(n);
+    if (t[0] == '[') {  // header or [Section]: ignored for lookup
+      bool isSection = false;
+      for (const auto& k : keys.keys())
+        isSection = isSection || normalizeKeyName("[" + k.section + "]") == normalizeKeyName(t);
+      if (!seenContent && !isSection) cfg.header_ = t;
+      seenContent = true;
+      continue;
+    }
+    seenContent = true;
+    const std::size_t eq = t.find('=');
+    if (eq == std::string::npos) {
+      errors.emplace_back(n, at + ": key '" + t + "': no '=' in the line; expected Name=Value");
+      continue;
+    }
+    const std::string name = trim(t.substr(0, eq));
+    if (name.empty()) {
+      errors.emplace_back(n, at + ": no key name before '='");
+      continue;
+    }
+    const int idx = keys.indexOf(name);
+    if (idx < 0) {
+      errors.emplace_back(n, at + ": key '" + name + "': unknown key" + didYouMean(keys, name));
+      continue;
+    }
+    const KeySpec& spec = keys.keys()[static_cast<std::size_t>(idx)];
+    Entry& e = cfg.entries_[static_cast<std::size_t>(idx)];
+    if (e.line > 0) {
+      errors.emplace_back(n, at + ": key '" + spec.name + "': given twice, at " + e.origin + " and again at " +
+                                 at);
+      continue;
+    }
+    splitValue(spec, t.substr(eq + 1), e.raw, e.rawMult, e.hasMult);
+    e.origin = at;
+    e.line = n;
+  }
+  for (auto& err : cfg.validate()) errors.push_back(std::move(err));
+  if (!errors.empty()) throw InputError(joinLines(std::move(errors)));
+  return cfg;
+}
+
+void RunConfig::set(const std::string& assignment) {
+  const std::string where = "command line --set";
+  const std::string t = trim(assignment);
+  const std::size_t eq = t.find('=');
+  if (eq == std::string::npos)
+    throw InputError(where + ": key '" + t + "': no '=' in '" + t + "'; expected Key=Value[=Multiplier]");
+  const std::string name = trim(t.substr(0, eq));
+  const int idx = registry_.indexOf(name);
+  if (idx < 0) throw InputError(where + ": key '" + name + "': unknown key" + didYouMean(registry_, name));
+  RunConfig updated = *this;
+  Entry& e = updated.entries_[static_cast<std::size_t>(idx)];
+  e = Entry{};
+  splitValue(registry_.keys()[static_cast<std::size_t>(idx)], t.substr(eq + 1), e.raw, e.rawMult, e.hasMult);
+  e.origin = "command line";
+  auto errors = updated.validate();
+  if (!errors.empty()) throw InputError(joinLines(std::move(errors)));
+  *this = std::move(updated);
+}
+
+std::string RunConfig::where(const Entry& e) const {
+  if (e.line > 0) return e.origin;
+  return e.origin == "command line" ? "command line --set" : source_;
+}
+
+std::vector<std::pair<long, std::string>> RunConfig::validate() {
+  const auto& specs = registry_.keys();
+  auto rank = [](const Entry& e) {
+    if (e.line > 0) return static_cast<long>(e.line);
+    return e.origin == "command line" ? kRankCommandLine : kRankDefault;
+  };
+  std::vector<std::pair<long, std::string>> errors;
+  std::vector<bool> bad(specs.size(), false);
+  std::string mapDir = baseDir_;
+  const int mapDirIndex = registry_.indexOf(kMapDirectoryKey);
+  std::vector<std::size_t> order;  // the Map Directory first: map files resolve against it
+  if (mapDirIndex >= 0) order.push_back(static_cast<std::size_t>(mapDirIndex));
+  for (std::size_t i = 0; i < specs.size(); ++i)
+    if (static_cast<int>(i) != mapDirIndex) order.push_back(i);
+  for (std::size_t i : order) {
+    Entry& e = entries_[i];
+    if (specs[i].required && e.origin == "default") {
+      errors.emplace_back(kRankDefault, source_ + ": required key '" + specs[i].name + "' is missing");
+      bad[i] = true;
+      continue;
+    }
+    const std::string problem = parseEntry(i, e, mapDir);
+    if (!problem.empty()) {
+      errors.emplace_back(rank(e), where(e) + ": key '" + specs[i].name + "': " + problem);
+      bad[i] = true;
+    } else if (static_cast<int>(i) == mapDirIndex && specs[i].type == KeyType::Directory) {
+      mapDir = e.textValue;
+    }
+  }
+  for (const auto& rule : registry_.rules()) {
+    const Entry* last = nullptr;  // the latest given key of the rule locates its message
+    std::string lastName;
+    bool skip = false;
+    for (const auto& k : rule.keys) {
+      const auto i = static_cast<std::size_t>(registry_.indexOf(k));
+      skip = skip || bad[i];
+      const long r = rank(entries_[i]);
+      if (!last || (r != kRankDefault && (rank(*last) == kRankDefault || r > rank(*last)))) {
+        last = &entries_[i];
+        lastName = specs[i].name;
+      }
+    }
+    if (skip || !last) continue;
+    const std::string problem = rule.check(*this);
+    if (!problem.empty())
+      errors.emplace_back(rank(*last), where(*last) + ": key '" + lastName + "': " + problem);
+  }
+  return errors;
+}
+
+std::string RunConfig::parseEntry(std::size_t i, Entry& e, const std::string& mapDir) const {
+  const KeySpec& spec = registry_.keys()[i];
+  e.multiplier = 1;
+  if (e.hasMult) {
+    if (spec.type != KeyType::Real && spec.type != KeyType::Integer && spec.type != KeyType::Map)
+      return "a multiplier ('" + e.rawMult + "') applies only to numbers and maps";
+    if (parseNumber(e.rawMult, e.multiplier) != Number::Ok)
+      return "bad multiplier '" + e.rawMult + "': expected a finite number";
+  }
+  switch (spec.type) {
+    case KeyType::Flag: {
+      const std::string v = lower(e.raw);
+      if (v == "1" || v == "true" || v == "yes" || v == "on") e.flagValue = true;
+      else if (v == "0" || v == "false" || v == "no" || v == "off") e.flagValue = false;
+      else return "bad flag value '" + e.raw + "': expected 0 or 1 (or true/false, yes/no)";
+      return "";
+    }
+    case KeyType::Integer:
+    case KeyType::Real: {
+      if (e.raw.empty()) return "no value given; expected a number" + unitSuffix(spec);
+      const Number n = parseNumber(e.raw, e.number);
+      if (n == Number::NotANumber) return "bad number '" + e.raw + "'";
+      if (n == Number::NotFinite) return "bad number '" + e.raw + "': not finite";
+      const double v = e.number * e.multiplier;
+      if (spec.type == KeyType::Integer && (v != std::round(v) || std::fabs(v) > INT_MAX))
+        return "value " + formatNumber(v) + " is not an integer";
+      return checkRange(spec, v, e.number, e.multiplier);
+    }
+    case KeyType::Choice: {
+      const std::string v = lower(e.raw);
+      if (std::find(spec.choices.begin(), spec.choices.end(), v) != spec.choices.end()) {
+        e.textValue = v;
+        return "";
+      }
+      std::string list;
+      for (std::size_t c = 0; c < spec.choices.size(); ++c) list += (c ? ", " : "") + spec.choices[c];
+      return "bad choice '" + e.raw + "': expected one of " + list;
+    }
+    case KeyType::Text:
+      e.textValue = e.raw;
+      return "";
+    case KeyType::Directory:
+      e.textValue = resolvePath(baseDir_, e.raw);
+      return "";
+    case KeyType::Map: {
+      e.mapValue = MapValue{};
+      e.mapValue.multiplier = e.multiplier;
+      if (e.raw.empty()) return "no value given; expected a raster file or a number";
+      double c = 0;
+      const Number n = parseNumber(e.raw, c);
+      if (n == Number::NotFinite) return "bad number '" + e.raw + "': not finite";
+      if (n == Number::Ok) {
+        e.mapValue.constant = c;
+        return checkRange(spec, c * e.multiplier, c, e.multiplier);
+      }
+      e.mapValue.isFile = true;
+      e.mapValue.file = resolvePath(mapDir, e.raw);
+      std::error_code ec;
+      if (!fs::exists(e.mapValue.file, ec)) return "map file '" + e.mapValue.file + "' does not exist";
+      if (fs::is_directory(e.mapValue.file, ec))
+        return "map '" + e.mapValue.file + "' is a folder, not a raster file";
+      return "";
+    }
+  }
+  return "";
+}
+
+const RunConfig::Entry& RunConfig::entry(const std::string& key, std::initializer_list<KeyType> types) const {
+  const int idx = registry_.indexOf(key);
+  if (idx < 0) throw std::logic_error("RunConfig: key '" + key + "' is not declared");
+  const auto i = static_cast<std::size_t>(idx);
+  const KeyType type = registry_.keys()[i].type;
+  if (types.size() && std::find(types.begin(), types.end(), type) == types.end())
+    throw std::logic_error("RunConfig: key '" + key + "' is a " + keyTypeName(type) + " key, not read as " +
+                           keyTypeName(*types.begin()));
+  return entries_[i];
+}
+
+double RunConfig::real(const std::string& key) const {
+  const Entry& e = entry(key, {KeyType::Real, KeyType::Integer});
+  return e.number * e.multiplier;
+}
+
+int RunConfig::integer(const std::string& key) const {
+  const Entry& e = entry(key, {KeyType::Integer});
+  return static_cast<int>(std::lround(e.number * e.multiplier));
+}
+
+bool RunConfig::flag(const std::string& key) const { return entry(key, {KeyType::Flag}).flagValue; }
+std::string RunConfig::choice(const std::string& key) const {
+  return entry(key, {KeyType::Choice}).textValue;
+}
+std::string RunConfig::text(const std::string& key) const { return entry(key, {KeyType::Text}).textValue; }
+std::string RunConfig::directory(const std::string& key) const {
+  return entry(key, {KeyType::Directory}).textValue;
+}
+MapValue RunConfig::map(const std::string& key) const { return entry(key, {KeyType::Map}).mapValue; }
+bool RunConfig::isDefault(const std::string& key) const { return entry(key, {}).origin == "default"; }
+std::string RunConfig::origin(const std::string& key) const { return entry(key, {}).origin; }
+
+std::string RunConfig::echo() const {
+  const auto& specs = registry_.keys();
+  std::vector<std::string> sections;
+  for (const auto& k : specs)
+    if (std::find(sections.begin(), sections.end(), k.section) == sections.end())
+      sections.push_back(k.section);
+  std::ostringstream os;
+  if (!header_.empty()) os << header_ << "\n";
+  os << "# Talus configuration resolved from " << source_ << ": every declared key, paths absolute.\n";
+  for (const auto& section : sections) {
+    os << "\n[" << (section.empty() ? "Other" : section) << "]\n";
+    for (std::size_t i = 0; i < specs.size(); ++i) {
+      const KeySpec& spec = specs[i];
+      const Entry& e = entries_[i];
+      if (spec.section != section) continue;
+      os << "# " << (spec.help.empty() ? spec.name : spec.help);
+      if (!spec.unit.empty()) os << " [" << spec.unit << "]";
+      os << " (" << (e.origin == "default" ? "default" : "from " + e.origin) << ")\n";
+      std::string value = e.raw;
+      if (spec.type == KeyType::Flag) value = e.flagValue ? "1" : "0";
+      if (spec.type == KeyType::Choice || spec.type == KeyType::Directory) value = e.textValue;
+      if (spec.type == KeyType::Map && e.mapValue.isFile) value = e.mapValue.file;
+      os << spec.name << "=" << value;
+      if (e.hasMult) os << "=" << e.rawMult;
+      os << "\n";
+    }
+  }
+  return os.str();
+}
+
+}  // namespace talus::io

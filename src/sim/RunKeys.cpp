@@ -1,0 +1,160 @@
+// Declarations of Talus's run-file keys. OpenLISEM Hazard's names and units are kept where it defines
+// the key (times in minutes, Timestep in seconds); Talus's own keys follow the same style.
+#include "sim/RunKeys.hpp"
+
+#include <limits>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "io/RunConfig.hpp"
+
+namespace talus::sim {
+
+namespace {
+
+using io::KeyRegistry;
+using io::KeySpec;
+using io::KeyType;
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// Builders: one call declares one key. Arguments follow the order of the key table.
+
+KeySpec flag(std::string name, std::string def, std::string help) {
+  KeySpec k;
+  k.name = std::move(name);
+  k.type = KeyType::Flag;
+  k.defaultValue = std::move(def);
+  k.help = std::move(help);
+  return k;
+}
+
+KeySpec real(std::string name, std::string def, std::string unit, double min, double max, std::string help) {
+  KeySpec k;
+  k.name = std::move(name);
+  k.type = KeyType::Real;
+  k.defaultValue = std::move(def);
+  k.unit = std::move(unit);
+  k.min = min;
+  k.max = max;
+  k.help = std::move(help);
+  return k;
+}
+
+KeySpec map(std::string name, std::string def, std::string unit, double min, double max, std::string help) {
+  KeySpec k = real(std::move(name), std::move(def), std::move(unit), min, max, std::move(help));
+  k.type = KeyType::Map;
+  return k;
+}
+
+KeySpec choice(std::string name, std::vector<std::string> choices, std::string def, std::string help) {
+  KeySpec k;
+  k.name = std::move(name);
+  k.type = KeyType::Choice;
+  k.choices = std::move(choices);
+  k.defaultValue = std::move(def);
+  k.help = std::move(help);
+  return k;
+}
+
+KeySpec text(std::string name, std::string def, std::string help, KeyType type = KeyType::Text) {
+  KeySpec k;
+  k.name = std::move(name);
+  k.type = type;
+  k.defaultValue = std::move(def);
+  k.help = std::move(help);
+  return k;
+}
+
+KeySpec required(KeySpec k) {
+  k.required = true;
+  return k;
+}
+
+/// Adds keys to a registry under one section.
+class Section {
+ public:
+  Section(KeyRegistry& keys, std::string name) : keys_(keys), name_(std::move(name)) {}
+  Section& operator<<(KeySpec k) {
+    k.section = name_;
+    keys_.add(std::move(k));
+    return *this;
+  }
+
+ private:
+  KeyRegistry& keys_;
+  std::string name_;
+};
+
+void addInputKeys(KeyRegistry& r) {
+  Section(r, "Input")
+      << text("Map Directory", "", "folder holding the maps (relative to the run-file's folder)",
+              KeyType::Directory)
+      << required(map("DEM", "", "m", -kInf, kInf, "bed elevation; nodata cells are outside the domain"))
+      << flag("Include Initial Water", "0", "start with the water of Initial Fluid Height")
+      << map("Initial Fluid Height", "0", "m", 0, 1e4, "vertical water thickness at t = start");
+}
+
+void addTimeKeys(KeyRegistry& r) {
+  Section(r, "Time")
+      << real("Start Time", "0", "min", 0, 1e6, "simulated time at the start")
+      << real("End Time", "1", "min", 0, 1e6, "simulated time at the end; must exceed Start Time")
+      << real("Timestep", "10", "s", 1e-6, 1e9,
+              "report interval of time series maps and progress (OpenLISEM calls it Timestep)");
+  r.addRule({"Start Time", "End Time"}, [](const io::RunConfig& c) -> std::string {
+    if (c.real("End Time") > c.real("Start Time")) return "";
+    return "End Time (" + io::formatNumber(c.real("End Time")) + " min) must exceed Start Time (" +
+           io::formatNumber(c.real("Start Time")) + " min)";
+  });
+}
+
+void addFlowKeys(KeyRegistry& r) {
+  Section(r, "Flow")
+      << map("Manning", "0.01", "s/m^(1/3)", 0, 1, "Manning roughness n")
+      << flag("Slope Correction", "1", "gravity g cos^2(theta) on steep beds (spec section 1)")
+      << choice("Depth Pressure", {"cos2", "cos4"}, "cos2",
+                "depth-pressure gravity g_p = g cos^2(theta) (lake at rest exact) or g cos^4(theta)");
+}
+
+void addNumericsKeys(KeyRegistry& r) {
+  Section(r, "Numerics")
+      << real("CFL", "0.5", "-", 0.01, 1, "Courant number over the sum of both directions' wave speeds")
+      << choice("Limiter", {"minmod", "vanleer", "mc", "none"}, "vanleer",
+                "slope limiter of the MUSCL reconstruction (none: first-order scheme, for comparisons)")
+      << choice("Riemann Solver", {"hll", "hllc"}, "hllc", "approximate Riemann solver of the fluxes")
+      << choice("Precision", {"float", "double"}, "float", "floating-point precision on the device")
+      << text("Device", "", "device selector: index or name substring; empty = automatic")
+      << choice("Boundary Type", {"open", "wall"}, "open", "boundary condition at the raster edge")
+      << choice("Nodata Boundary Type", {"wall", "open"}, "wall", "boundary condition at nodata cells")
+      << real("Minimum Flow Height", "1e-6", "m", 0, 1, "dry threshold below which velocity is zero")
+      << flag("Skip Dry Tiles", "1", "skip 16x16-cell tiles with no flow within one tile (0: update every cell)");
+}
+
+void addOutputKeys(KeyRegistry& r) {
+  Section(r, "Output")
+      << real("Arrival Threshold", "0.01", "m", 0, 100, "thickness that marks arrival")
+      << text("Output Directory", "output",
+              "folder the results are written to (relative to the run-file's folder)", KeyType::Directory)
+      << choice("Output Format", {"geotiff", "pcraster"}, "geotiff", "raster format of the outputs")
+      << flag("Report Series", "1", "write time-series maps every Timestep");
+}
+
+KeyRegistry buildKeys() {
+  KeyRegistry r;
+  addInputKeys(r);
+  addTimeKeys(r);
+  addFlowKeys(r);
+  addNumericsKeys(r);
+  addOutputKeys(r);
+  return r;
+}
+
+}  // namespace
+
+const io::KeyRegistry& talusRunKeys() {
+  static const io::KeyRegistry keys = buildKeys();
+  return keys;
+}
+
+}  // namespace talus::sim

@@ -1,0 +1,95 @@
+#include "sim/Scene.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include "core/Error.hpp"
+
+namespace talus::sim {
+namespace {
+
+std::string cellText(const Grid& g, int i, int j) {
+  std::ostringstream o;
+  o << "cell (column " << i << ", row " << j << ") at x = " << g.cellX(i) << ", y = " << g.cellY(j);
+  return o.str();
+}
+
+/// Reads a map key (a raster on the DEM's grid, or a number) as values times the multiplier.
+/// Cells inside the DEM's domain must hold finite data; `minValue` is checked there too.
+std::vector<double> loadMap(const io::RunConfig& cfg, const std::string& key, const Raster& dem,
+                            const std::string& demPath, double minValue) {
+  const io::MapValue mv = cfg.map(key);
+  const std::size_t n = dem.grid.cells();
+  if (!mv.isFile) {
+    const double v = mv.constant * mv.multiplier;
+    if (!std::isfinite(v) || v < minValue)
+      throw InputError(cfg.origin(key) + ": key '" + key + "': value " + std::to_string(v) + " is below " +
+                       std::to_string(minValue));
+    return std::vector<double>(n, v);
+  }
+  const Raster r = io::readRaster(mv.file);
+  io::requireSameGrid(dem, demPath, r, mv.file);
+  std::vector<double> out(n, 0.0);
+  for (int j = 0; j < dem.grid.ny; ++j)
+    for (int i = 0; i < dem.grid.nx; ++i) {
+      const std::size_t k = dem.grid.index(i, j);
+      if (!dem.valid[k]) continue;
+      if (!r.valid[k])
+        throw InputError("map '" + mv.file + "' (key '" + key + "') has no data at " + cellText(dem.grid, i, j) +
+                         ", which is inside the DEM's domain");
+      const double v = r.values[k] * mv.multiplier;
+      if (v < minValue)
+        throw InputError("map '" + mv.file + "' (key '" + key + "') has value " + std::to_string(v) + " at " +
+                         cellText(dem.grid, i, j) + "; the smallest allowed is " + std::to_string(minValue));
+      out[k] = v;
+    }
+  return out;
+}
+
+}  // namespace
+
+Scene loadScene(const io::RunConfig& cfg) {
+  Scene s;
+  s.runFile = cfg.sourceName();
+  const io::MapValue demKey = cfg.map("DEM");
+  if (!demKey.isFile) throw InputError(cfg.origin("DEM") + ": key 'DEM': the DEM must be a raster file, not a number");
+  s.dem = io::readRaster(demKey.file);
+  if (demKey.multiplier != 1.0)
+    for (double& v : s.dem.values) v *= demKey.multiplier;
+  std::size_t inside = 0;
+  for (uint8_t v : s.dem.valid) inside += v;
+  if (inside == 0) throw InputError("DEM '" + demKey.file + "' has no valid cells");
+
+  const Grid& g = s.dem.grid;
+  s.flow.mask = s.dem.valid;
+  s.flow.bed = s.dem.values;
+  s.flow.manning = loadMap(cfg, "Manning", s.dem, demKey.file, 0.0);
+  if (cfg.flag("Include Initial Water"))
+    s.flow.h = loadMap(cfg, "Initial Fluid Height", s.dem, demKey.file, 0.0);
+  else
+    s.flow.h.assign(g.cells(), 0.0);
+
+  flow::FlowSettings& f = s.settings;
+  f.limiter = flow::parseLimiter(cfg.choice("Limiter"));
+  f.riemann = flow::parseRiemann(cfg.choice("Riemann Solver"));
+  f.cfl = cfg.real("CFL");
+  f.hDry = cfg.real("Minimum Flow Height");
+  f.arrivalH = cfg.real("Arrival Threshold");
+  f.edge = flow::parseBoundary(cfg.choice("Boundary Type"));
+  f.nodata = flow::parseBoundary(cfg.choice("Nodata Boundary Type"));
+  f.slopeCorrection = cfg.flag("Slope Correction");
+  f.skipDryTiles = cfg.flag("Skip Dry Tiles");
+  f.depthPressure = flow::parseDepthPressure(cfg.choice("Depth Pressure"));
+
+  s.startTime = 60.0 * cfg.real("Start Time");
+  s.endTime = 60.0 * cfg.real("End Time");
+  s.reportInterval = cfg.real("Timestep");
+  s.precision = cfg.choice("Precision");
+  s.device = cfg.text("Device");
+  s.outputDir = cfg.directory("Output Directory");
+  s.format = cfg.choice("Output Format") == "pcraster" ? io::RasterFormat::PCRaster : io::RasterFormat::GeoTiff;
+  s.reportSeries = cfg.flag("Report Series");
+  return s;
+}
+
+}  // namespace talus::sim

@@ -1,0 +1,32 @@
+// A scene: everything a run needs, read from a run-file and its maps and checked before any
+// device work starts (grids match the DEM, no holes or NaN inside the domain, no negative thickness).
+#pragma once
+#include <string>
+
+#include "core/Raster.hpp"
+#include "flow/FlowSettings.hpp"
+#include "flow/FlowSolver.hpp"
+#include "io/RasterIO.hpp"
+#include "io/RunConfig.hpp"
+
+namespace talus::sim {
+
+struct Scene {
+  std::string runFile;           ///< where it came from (for messages and the summary)
+  Raster dem;                    ///< DEM as read: grid, georeference, nodata mask
+  flow::FlowInput flow;          ///< initial fields for the flow solver
+  flow::FlowSettings settings;
+  double startTime = 0;          ///< [s]
+  double endTime = 60;           ///< [s]
+  double reportInterval = 10;    ///< [s]
+  std::string precision = "float";
+  std::string device;            ///< device selector ("" = automatic)
+  std::string outputDir;         ///< absolute
+  io::RasterFormat format = io::RasterFormat::GeoTiff;
+  bool reportSeries = true;
+};
+
+/// Builds the scene of a parsed run-file. Throws InputError naming the file, key or cell at fault.
+Scene loadScene(const io::RunConfig& config);
+
+}  // namespace talus::sim

@@ -1,0 +1,280 @@
+// CPU reference of one shallow-water step (see CpuFlowReference.hpp for the scheme in one page).
+// Written from the equations in the kernel file headers, not from the kernel code paths: faces are
+// computed once per face into arrays, then every cell takes its divergence.
+#include "support/CpuFlowReference.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "core/Constants.hpp"
+#include "flow/SlopeGravity.hpp"
+
+namespace talus::test {
+
+using flow::Boundary;
+using flow::Limiter;
+
+CpuFlowReference::CpuFlowReference(const Grid& grid, const flow::FlowSettings& settings,
+                                   const flow::FlowInput& in)
+    : grid_(grid), settings_(settings), mask_(in.mask.begin(), in.mask.end()), bed_(in.bed), manning_(in.manning),
+      h_(in.h), qx_(in.qx), qy_(in.qy) {
+  const std::size_t n = grid.cells();
+  if (mask_.size() != n || bed_.size() != n || manning_.size() != n || h_.size() != n)
+    throw std::invalid_argument("CpuFlowReference: input sizes differ from the grid");
+  if (qx_.empty()) qx_.assign(n, 0.0);
+  if (qy_.empty()) qy_.assign(n, 0.0);
+  for (std::size_t k = 0; k < n; ++k)
+    if (!mask_[k]) h_[k] = 0.0, bed_[k] = 0.0;
+  const flow::SlopeGravity sg = flow::computeSlopeGravity(grid, bed_, in.mask, settings);
+  gn_ = sg.gn;
+  gp_ = sg.gp;
+  hMax_ = h_;
+  vMax_.assign(n, 0.0);
+  arrival_.assign(n, -1.0);
+  track();
+  computeDiagnostics(0.0);
+}
+
+bool CpuFlowReference::inside(int i, int j) const {
+  return i >= 0 && j >= 0 && i < grid_.nx && j < grid_.ny && mask_[grid_.index(i, j)] != 0;
+}
+
+// Kurganov & Petrova (2007) eq. 2.21 with eps = h_dry, and zero at or below the dry threshold.
+double CpuFlowReference::velocity(double h, double q) const {
+  const double eps = settings_.hDry;
+  if (h <= eps) return 0.0;
+  const double h4 = h * h * h * h;
+  return std::sqrt(2.0) * h * q / std::sqrt(h4 + std::max(h4, eps * eps * eps * eps));
+}
+
+// Slope from the backward difference a and the forward difference b; zero at extrema.
+double CpuFlowReference::limiter(double a, double b) const {
+  if (settings_.limiter == Limiter::None || a * b <= 0.0) return 0.0;
+  switch (settings_.limiter) {
+    case Limiter::Minmod: return std::fabs(a) < std::fabs(b) ? a : b;
+    case Limiter::VanLeer: return 2.0 * a * b / (a + b);  // harmonic mean
+    case Limiter::MC: {                                   // minmod(2a, 2b, (a + b) / 2)
+      const double centred = 0.5 * (a + b);
+      return std::copysign(std::min({std::fabs(2.0 * a), std::fabs(2.0 * b), std::fabs(centred)}), centred);
+    }
+    default: return 0.0;
+  }
+}
+
+CpuFlowReference::Prim CpuFlowReference::prim(const State& s, int i, int j, int dir) const {
+  const std::size_t k = grid_.index(i, j);
+  const double u = velocity(s.h[k], s.qx[k]), v = velocity(s.h[k], s.qy[k]);
+  return {s.h[k], s.h[k] + bed_[k], dir == 0 ? u : v, dir == 0 ? v : u};
+}
+
+CpuFlowReference::Faces CpuFlowReference::reconstruct(const State& s, int i, int j, int dir) const {
+  const int di = dir == 0 ? 1 : 0, dj = 1 - di;
+  const Prim c = prim(s, i, j, dir);
+  double dh = 0, de = 0, dun = 0, dut = 0;  // limited slopes, zero next to outside cells
+  if (inside(i - di, j - dj) && inside(i + di, j + dj)) {
+    const Prim m = prim(s, i - di, j - dj, dir), p = prim(s, i + di, j + dj, dir);
+    dh = limiter(c.h - m.h, p.h - c.h);
+    de = limiter(c.eta - m.eta, p.eta - c.eta);
+    dun = limiter(c.un - m.un, p.un - c.un);
+    dut = limiter(c.ut - m.ut, p.ut - c.ut);
+  }
+  return {c.h - 0.5 * dh,   c.h + 0.5 * dh,   c.eta - 0.5 * de, c.eta + 0.5 * de,
+          c.un - 0.5 * dun, c.un + 0.5 * dun, c.ut - 0.5 * dut, c.ut + 0.5 * dut};
+}
+
+// HLL (Harten, Lax & van Leer 1983) / HLLC (Toro 2001, ch. 10) with Toro's two-rarefaction wave
+// speed estimates and the dry-bed speeds. `pressure` is the HLL average of h^2/2 without g.
+CpuFlowReference::FaceFlux CpuFlowReference::riemann(double hl, double ul, double vl, double hr, double ur,
+                                                     double vr, double g) const {
+  FaceFlux f;
+  if (hl <= 0.0 && hr <= 0.0) return f;
+  const double cl = std::sqrt(g * hl), cr = std::sqrt(g * hr);
+  double sl, sr;
+  if (hl <= 0.0) {
+    sl = ur - 2.0 * cr, sr = ur + cr;
+  } else if (hr <= 0.0) {
+    sl = ul - cl, sr = ul + 2.0 * cl;
+  } else {
+    const double uStar = 0.5 * (ul + ur) + cl - cr;
+    const double cStar = 0.5 * (cl + cr) + 0.25 * (ul - ur);
+    sl = std::min(ul - cl, uStar - cStar);
+    sr = std::max(ur + cr, uStar + cStar);
+  }
+  const double ql = hl * ul, qr = hr * ur;
+  if (sl >= 0.0 || sr <= 0.0) {  // supersonic: upwind physical flux
+    const bool left = sl >= 0.0;
+    const double h = left ? hl : hr, q = left ? ql : qr, u = left ? ul : ur, v = left ? vl : vr;
+    f.mass = q, f.normalMomentum = q * u, f.tangentialMomentum = q * v, f.pressure = 0.5 * h * h;
+    return f;
+  }
+  const double w = 1.0 / (sr - sl);
+  f.mass = (sr * ql - sl * qr + sl * sr * (hr - hl)) * w;
+  f.normalMomentum = (sr * ql * ul - sl * qr * ur + sl * sr * (qr - ql)) * w;
+  f.pressure = (sr * 0.5 * hl * hl - sl * 0.5 * hr * hr) * w;
+  if (settings_.riemann == flow::RiemannSolver::HLLC) {
+    // Contact speed s* (Toro eq. 10.71); v is carried passively on the upwind side of s*.
+    const double den = hr * (ur - sr) - hl * (ul - sl);
+    const double sStar = den != 0.0 ? (sl * hr * (ur - sr) - sr * hl * (ul - sl)) / den : 0.5 * (sl + sr);
+    f.tangentialMomentum = f.mass * (sStar >= 0.0 ? vl : vr);
+  } else {
+    f.tangentialMomentum = (sr * ql * vl - sl * qr * vr + sl * sr * (hr * vr - hl * vl)) * w;
+  }
+  return f;
+}
+
+// Face (i,j) of direction dir lies between cell (i-1,j) and (i,j) (dir 0) or (i,j-1) and (i,j).
+CpuFlowReference::FaceFlux CpuFlowReference::faceFlux(const State& s, int i, int j, int dir) const {
+  const int li = dir == 0 ? i - 1 : i, lj = dir == 0 ? j : j - 1;
+  const bool lIn = inside(li, lj), rIn = inside(i, j);
+  FaceFlux f;
+  if (!lIn && !rIn) return f;
+  struct Side {
+    double h, eta, un, ut, g;
+  } L{}, R{};
+  if (lIn) {
+    const Faces c = reconstruct(s, li, lj, dir);
+    L = {c.hHi, c.etaHi, c.unHi, c.utHi, gp_[grid_.index(li, lj)]};
+  }
+  if (rIn) {
+    const Faces c = reconstruct(s, i, j, dir);
+    R = {c.hLo, c.etaLo, c.unLo, c.utLo, gp_[grid_.index(i, j)]};
+  }
+  // Ghost cell: a copy of the inside face state, normal velocity mirrored at a wall.
+  auto kind = [&](int a, int b) {
+    const bool offRaster = a < 0 || b < 0 || a >= grid_.nx || b >= grid_.ny;
+    return offRaster ? settings_.edge : settings_.nodata;
+  };
+  bool wall = false;
+  if (!lIn) {
+    wall = kind(li, lj) == Boundary::Wall;
+    L = R;
+    if (wall) L.un = -R.un;
+  }
+  if (!rIn) {
+    wall = kind(i, j) == Boundary::Wall;
+    R = L;
+    if (wall) R.un = -L.un;
+  }
+  // Audusse et al. (2004): face bed = higher face bed, thicknesses re-measured from it.
+  const double bedFace = std::max(L.eta - L.h, R.eta - R.h);
+  const double hl = std::max(0.0, L.eta - bedFace), hr = std::max(0.0, R.eta - bedFace);
+  f = riemann(hl, L.un, L.ut, hr, R.un, R.ut, std::max(L.g, R.g));
+  if (wall) f.mass = 0.0, f.tangentialMomentum = 0.0;
+  f.corrMinus = 0.5 * (L.h * L.h - hl * hl);
+  f.corrPlus = 0.5 * (R.h * R.h - hr * hr);
+  return f;
+}
+
+double CpuFlowReference::rkStage(const State& s, const State* base, double dt, State& out) const {
+  const int nx = grid_.nx, ny = grid_.ny;
+  std::vector<FaceFlux> fx(static_cast<std::size_t>(nx + 1) * ny), fy(static_cast<std::size_t>(nx) * (ny + 1));
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i <= nx; ++i) fx[j * (nx + 1) + i] = faceFlux(s, i, j, 0);
+  for (int j = 0; j <= ny; ++j)
+    for (int i = 0; i < nx; ++i) fy[j * nx + i] = faceFlux(s, i, j, 1);
+
+  const double r = dt / grid_.dx;
+  double outward = 0.0;
+  out = s;
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      if (!inside(i, j)) continue;
+      const std::size_t k = grid_.index(i, j);
+      const FaceFlux &W = fx[j * (nx + 1) + i], &E = fx[j * (nx + 1) + i + 1];
+      const FaceFlux &S = fy[j * nx + i], &N = fy[(j + 1) * nx + i];
+      const double g = gp_[k];
+      // Flux divergence; a cell is the minus side of its E/N faces and the plus side of W/S.
+      double dh = -r * (E.mass - W.mass + N.mass - S.mass);
+      const double east = E.normalMomentum + g * (E.pressure + E.corrMinus);
+      const double west = W.normalMomentum + g * (W.pressure + W.corrPlus);
+      const double north = N.normalMomentum + g * (N.pressure + N.corrMinus);
+      const double south = S.normalMomentum + g * (S.pressure + S.corrPlus);
+      double dqx = -r * (east - west + N.tangentialMomentum - S.tangentialMomentum);
+      double dqy = -r * (north - south + E.tangentialMomentum - W.tangentialMomentum);
+      // Centred bed source g_p (h_lo + h_hi)/2 (b_hi - b_lo) of the cell's own reconstruction,
+      // plus (g_p - g_n) h db/dx (nonzero only for the cos^4 depth pressure).
+      if (s.h[k] > 0.0) {
+        for (int dir = 0; dir < 2; ++dir) {
+          const int di = dir == 0 ? 1 : 0, dj = 1 - di;
+          const Faces c = reconstruct(s, i, j, dir);
+          double src = g * 0.5 * (c.hLo + c.hHi) * ((c.etaHi - c.hHi) - (c.etaLo - c.hLo));
+          if (g != gn_[k] && inside(i - di, j - dj) && inside(i + di, j + dj))
+            src -= (g - gn_[k]) * s.h[k] * 0.5 *
+                   (bed_[grid_.index(i + di, j + dj)] - bed_[grid_.index(i - di, j - dj)]);
+          (dir == 0 ? dqx : dqy) -= r * src;
+        }
+      }
+      double h = s.h[k] + dh, qx = s.qx[k] + dqx, qy = s.qy[k] + dqy;
+      if (base) {
+        h = 0.5 * base->h[k] + 0.5 * h;
+        qx = 0.5 * base->qx[k] + 0.5 * qx;
+        qy = 0.5 * base->qy[k] + 0.5 * qy;
+      }
+      if (h <= settings_.hDry) h = std::max(h, 0.0), qx = 0.0, qy = 0.0;
+      out.h[k] = h, out.qx[k] = qx, out.qy[k] = qy;
+      if (!inside(i - 1, j)) outward -= W.mass;
+      if (!inside(i + 1, j)) outward += E.mass;
+      if (!inside(i, j - 1)) outward -= S.mass;
+      if (!inside(i, j + 1)) outward += N.mass;
+    }
+  return outward;
+}
+
+// q <- q / (1 + dt g n^2 |u| / h^(4/3)): the linearised implicit Manning step of friction.cl.
+void CpuFlowReference::friction(double dt) {
+  for (std::size_t k = 0; k < grid_.cells(); ++k) {
+    if (!mask_[k] || h_[k] <= settings_.hDry || manning_[k] <= 0.0) continue;
+    const double u = velocity(h_[k], qx_[k]), v = velocity(h_[k], qy_[k]);
+    const double n = manning_[k];
+    const double factor = 1.0 + dt * kGravity * n * n * std::sqrt(u * u + v * v) / std::pow(h_[k], 4.0 / 3.0);
+    qx_[k] /= factor;
+    qy_[k] /= factor;
+  }
+}
+
+void CpuFlowReference::track() {
+  for (std::size_t k = 0; k < grid_.cells(); ++k) {
+    if (!mask_[k]) continue;
+    const double u = velocity(h_[k], qx_[k]), v = velocity(h_[k], qy_[k]);
+    hMax_[k] = std::max(hMax_[k], h_[k]);
+    vMax_[k] = std::max(vMax_[k], std::sqrt(u * u + v * v));
+    if (arrival_[k] < 0.0 && h_[k] >= settings_.arrivalH && h_[k] > 0.0) arrival_[k] = time_;
+  }
+}
+
+void CpuFlowReference::computeDiagnostics(double outflowVolume) {
+  const double area = grid_.dx * grid_.dx;
+  diag_ = flow::FlowDiagnostics{};
+  diag_.outflow = outflowVolume;
+  diag_.minH = std::numeric_limits<double>::max();
+  for (std::size_t k = 0; k < grid_.cells(); ++k) {
+    if (!mask_[k]) continue;
+    const double h = h_[k], u = velocity(h, qx_[k]), v = velocity(h, qy_[k]);
+    if (h > 0.0) diag_.maxSpeed = std::max(diag_.maxSpeed, std::fabs(u) + std::fabs(v) + 2.0 * std::sqrt(gp_[k] * h));
+    diag_.volume += h * area;
+    diag_.kinetic += 0.5 * h * (u * u + v * v) * area;
+    diag_.minH = std::min(diag_.minH, h);
+  }
+}
+
+double CpuFlowReference::stableDt() const {
+  if (diag_.maxSpeed <= 0.0) return std::numeric_limits<double>::infinity();
+  return settings_.cfl * grid_.dx / diag_.maxSpeed;
+}
+
+void CpuFlowReference::step(double dt) {
+  const State u0{h_, qx_, qy_};
+  State u1, u2;
+  const double out1 = rkStage(u0, nullptr, dt, u1);
+  const double out2 = rkStage(u1, &u0, dt, u2);
+  h_ = u2.h, qx_ = u2.qx, qy_ = u2.qy;
+  friction(dt);
+  time_ += dt;
+  track();
+  // The RK2 average of the two stages' outward mass fluxes, times the face length dx and dt.
+  computeDiagnostics(0.5 * dt * (out1 + out2) * grid_.dx);
+}
+
+}  // namespace talus::test

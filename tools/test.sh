@@ -1,0 +1,38 @@
+#!/usr/bin/env bash
+# Sets up, builds and runs the whole test suite (labels unit, kernels, verification) on the
+# available OpenCL device (PoCL's CPU device on a machine without a GPU).
+# Exits non-zero when any step or any test fails.
+# Environment: TALUS_BUILD_DIR (default build), TALUS_TEST_JOBS (parallel ctest jobs, default 1),
+# TALUS_DEVICE (device selection, passed through to the tests).
+set -euo pipefail
+
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+cd "$root"
+build_dir=${TALUS_BUILD_DIR:-build}
+[[ "$build_dir" = /* ]] || build_dir="$root/$build_dir"
+export TALUS_BUILD_DIR="$build_dir"
+
+bash tools/setup.sh
+bash tools/build.sh
+
+# PoCL caches compiled kernels under $XDG_CACHE_HOME or $HOME/.cache; make sure one is set
+# when the caller (a bare CI shell) has neither.
+if [[ -z "${XDG_CACHE_HOME:-}" && -z "${HOME:-}" ]]; then
+  export XDG_CACHE_HOME="$build_dir/.cache"
+fi
+export POCL_KERNEL_CACHE="${POCL_KERNEL_CACHE:-1}"
+
+if command -v clinfo >/dev/null 2>&1; then
+  echo "OpenCL platforms/devices:"
+  clinfo -l || true
+fi
+
+rc=0
+ctest --test-dir "$build_dir" --output-on-failure --no-tests=error --timeout 900 \
+  -j "${TALUS_TEST_JOBS:-1}" -L 'unit|kernels|verification' || rc=$?
+
+if (( rc != 0 )); then
+  echo "test: FAILED (ctest exit status $rc)" >&2
+  exit "$rc"
+fi
+echo "test: all tests passed"
