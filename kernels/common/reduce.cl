@@ -31,13 +31,13 @@ __kernel void reduce_stage(__global const real* in, const uint n, const int op, 
   if (lid == 0) out[get_group_id(0)] = scratch[0];
 }
 
-/// Reduces `rows` rows of length n stored one after another in `in` (row r starts at r * n), one
-/// work-group per row; the operation of row r is bits 2r..2r+1 of `ops`. out[r] receives the result.
-__kernel void reduce_rows(__global const real* in, const uint n, const uint ops, __global real* out,
-                          __local real* scratch) {
+/// Reduces the first n entries of rows that start every `stride` entries of `in`, one work-group
+/// per row; the operation of row r is bits 2r..2r+1 of `ops`. out[r] receives the result.
+__kernel void reduce_rows(__global const real* in, const uint n, const uint stride, const uint ops,
+                          __global real* out, __local real* scratch) {
   const uint lid = get_local_id(0), row = get_group_id(0);
   const int op = (int)((ops >> (2 * row)) & 3u);
-  __global const real* r = in + (size_t)row * n;
+  __global const real* r = in + (size_t)row * stride;
   real acc = reduce_identity(op);
   for (uint i = lid; i < n; i += get_local_size(0)) acc = reduce_combine(op, acc, r[i]);
   scratch[lid] = acc;

@@ -1,9 +1,13 @@
-// Per-tile diagnostics in one pass over the wet tiles, one work-group per TILE x TILE tile:
-// the CFL wave speed max over cells of (|u| + c) + (|v| + c) with c = sqrt(g_p h), the volume,
-// the outflow of the last step, the kinetic energy per unit density, the smallest thickness and
-// whether the tile holds any water. The host reduces the partials with the generic reduction.
-// Then flow_activate_tiles marks every tile within one tile of a wet tile as active for the next
-// step: with CFL <= 1 water moves at most two cells per step, far less than a tile.
+// Per-tile diagnostics in one pass over the active tiles, one work-group per tile: the CFL wave
+// speed max over cells of (|u| + c) + (|v| + c) with c = sqrt(g_p h), the volume, the outflow of the
+// last step, the kinetic energy per unit density, the smallest thickness and whether the tile holds
+// any water. Partials are stored at the tile's position in the active list (rows of length ntiles),
+// so the host reduces the first `count` entries of each row; the list is in ascending tile order,
+// which makes every sum deterministic.
+//
+// flow_compact_tiles then marks every tile within one tile of a wet tile as active for the next step
+// (with CFL <= 1 water moves at most two cells per step, far less than a tile) and writes the
+// ascending list of active tiles and its length, in one work-group (a prefix sum over tile chunks).
 #include "flow/flow_common.cl"
 
 #define DIAG_SPEED 0
@@ -14,25 +18,26 @@
 #define DIAG_COUNT 5
 
 __kernel __attribute__((reqd_work_group_size(TILE, TILE, 1)))
-void flow_tile_diagnostics(__constant const FlowParams* p, __global const uchar* mask, __global const int* tile_active,
+void flow_tile_diagnostics(__constant const FlowParams* p, __global const uchar* mask, __global const int* tile_list,
                            __global const real* h, __global const real* qx, __global const real* qy,
                            __global const real* gp, __global const real* out_step, __global real* partial,
                            __global int* tile_wet) {
   __local real s_speed[TILE * TILE], s_vol[TILE * TILE], s_out[TILE * TILE], s_ke[TILE * TILE], s_min[TILE * TILE];
   __local int s_wet[TILE * TILE];
-  const int i = get_global_id(0), j = get_global_id(1);
+  const int2 c = tile_cell(p, tile_list);
+  const int i = c.x, j = c.y;
   const int lid = get_local_id(1) * TILE + get_local_id(0);
-  const int tile = get_group_id(1) * p->tiles_x + get_group_id(0);
+  const int slot = get_group_id(0);
   const int ntiles = p->tiles_x * p->tiles_y;
   real speed = 0, vol = 0, out = 0, ke = 0, hmin = REAL_MAX;
   int wet = 0;
-  if (i < p->nx && j < p->ny && tile_active[tile] && cell_inside(p, mask, i, j)) {
+  if (i < p->nx && j < p->ny && cell_inside(p, mask, i, j)) {
     const int k = cell_index(p, i, j);
     const real hk = h[k];
     const real u = velocity(hk, qx[k], p->h_dry), v = velocity(hk, qy[k], p->h_dry);
-    const real c = sqrt(gp[k] * fmax(hk, (real)0));
+    const real cw = sqrt(gp[k] * fmax(hk, (real)0));
     const real area = p->dx * p->dx;
-    speed = hk > (real)0 ? fabs(u) + fabs(v) + (real)2 * c : (real)0;
+    speed = hk > (real)0 ? fabs(u) + fabs(v) + (real)2 * cw : (real)0;
     vol = hk * area;
     out = out_step[k];
     ke = (real)0.5 * hk * (u * u + v * v) * area;
@@ -44,8 +49,8 @@ void flow_tile_diagnostics(__constant const FlowParams* p, __global const uchar*
   barrier(CLK_LOCAL_MEM_FENCE);
   for (int s = TILE * TILE / 2; s > 0; s >>= 1) {
     if (lid < s) {
-      const real a = s_speed[lid], c = s_speed[lid + s];
-      s_speed[lid] = (isnan(a) || isnan(c)) ? NAN : fmax(a, c);
+      const real a = s_speed[lid], b = s_speed[lid + s];
+      s_speed[lid] = (isnan(a) || isnan(b)) ? NAN : fmax(a, b);
       s_vol[lid] += s_vol[lid + s];
       s_out[lid] += s_out[lid + s];
       s_ke[lid] += s_ke[lid + s];
@@ -55,24 +60,54 @@ void flow_tile_diagnostics(__constant const FlowParams* p, __global const uchar*
     barrier(CLK_LOCAL_MEM_FENCE);
   }
   if (lid == 0) {
-    partial[DIAG_SPEED * ntiles + tile] = s_speed[0];
-    partial[DIAG_VOLUME * ntiles + tile] = s_vol[0];
-    partial[DIAG_OUTFLOW * ntiles + tile] = s_out[0];
-    partial[DIAG_KINETIC * ntiles + tile] = s_ke[0];
-    partial[DIAG_MIN_H * ntiles + tile] = s_min[0];
-    tile_wet[tile] = s_wet[0];
+    partial[DIAG_SPEED * ntiles + slot] = s_speed[0];
+    partial[DIAG_VOLUME * ntiles + slot] = s_vol[0];
+    partial[DIAG_OUTFLOW * ntiles + slot] = s_out[0];
+    partial[DIAG_KINETIC * ntiles + slot] = s_ke[0];
+    partial[DIAG_MIN_H * ntiles + slot] = s_min[0];
+    tile_wet[tile_list[slot]] = s_wet[0];
   }
 }
 
-__kernel void flow_activate_tiles(__constant const FlowParams* p, __global const int* tile_wet,
-                                  __global int* tile_active) {
-  const int ti = get_global_id(0), tj = get_global_id(1);
-  if (ti >= p->tiles_x || tj >= p->tiles_y) return;
-  int active = !p->skip_dry_tiles;
-  for (int dj = -1; dj <= 1 && !active; ++dj)
+#define COMPACT_GROUP 256
+
+inline int tile_should_run(__constant const FlowParams* p, __global const int* tile_wet, int t) {
+  if (!p->skip_dry_tiles) return 1;
+  const int ti = t % p->tiles_x, tj = t / p->tiles_x;
+  for (int dj = -1; dj <= 1; ++dj)
     for (int di = -1; di <= 1; ++di) {
       const int a = ti + di, c = tj + dj;
-      if (a >= 0 && c >= 0 && a < p->tiles_x && c < p->tiles_y && tile_wet[c * p->tiles_x + a]) active = 1;
+      if (a >= 0 && c >= 0 && a < p->tiles_x && c < p->tiles_y && tile_wet[c * p->tiles_x + a]) return 1;
     }
-  tile_active[tj * p->tiles_x + ti] = active;
+  return 0;
+}
+
+/// One work-group of COMPACT_GROUP items; item k handles a contiguous chunk of tiles.
+__kernel __attribute__((reqd_work_group_size(COMPACT_GROUP, 1, 1)))
+void flow_compact_tiles(__constant const FlowParams* p, __global const int* tile_wet, __global int* tile_active,
+                        __global int* tile_list, __global int* tile_count) {
+  __local int s_sum[COMPACT_GROUP];
+  const int lid = get_local_id(0);
+  const int ntiles = p->tiles_x * p->tiles_y;
+  const int chunk = (ntiles + COMPACT_GROUP - 1) / COMPACT_GROUP;
+  const int t0 = lid * chunk, t1 = min(ntiles, t0 + chunk);
+  int n = 0;
+  for (int t = t0; t < t1; ++t) {
+    const int a = tile_should_run(p, tile_wet, t);
+    tile_active[t] = a;
+    n += a;
+  }
+  s_sum[lid] = n;
+  barrier(CLK_LOCAL_MEM_FENCE);
+  // Inclusive Hillis-Steele scan of the chunk counts.
+  for (int off = 1; off < COMPACT_GROUP; off <<= 1) {
+    const int add = lid >= off ? s_sum[lid - off] : 0;
+    barrier(CLK_LOCAL_MEM_FENCE);
+    s_sum[lid] += add;
+    barrier(CLK_LOCAL_MEM_FENCE);
+  }
+  int pos = s_sum[lid] - n;
+  for (int t = t0; t < t1; ++t)
+    if (tile_active[t]) tile_list[pos++] = t;
+  if (lid == COMPACT_GROUP - 1) tile_count[0] = s_sum[lid];
 }

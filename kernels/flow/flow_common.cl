@@ -48,20 +48,19 @@ inline int boundary_kind(__constant const FlowParams* p, int io, int jo) {
   return off_raster ? p->edge_boundary : p->nodata_boundary;
 }
 
-inline int tile_of(__constant const FlowParams* p, int i, int j) { return (j / TILE) * p->tiles_x + (i / TILE); }
-
-inline int cell_active(__constant const FlowParams* p, __global const int* tile_active, int i, int j) {
-  return tile_active[tile_of(p, i, j)] != 0;
+/// The cell of this work-item: work-group g handles the tile tile_list[g] (active tiles only, in
+/// ascending order), one work-item per cell. Work-items past the raster edge get i >= nx or j >= ny.
+inline int2 tile_cell(__constant const FlowParams* p, __global const int* tile_list) {
+  const int tile = tile_list[get_group_id(0)];
+  const int tx = tile % p->tiles_x, ty = tile / p->tiles_x;
+  return (int2)(tx * TILE + (int)get_local_id(0), ty * TILE + (int)get_local_id(1));
 }
 
-/// Velocity from momentum, desingularised near dry cells (Kurganov & Petrova 2007, eq. 2.21):
-/// u = sqrt(2) h q / sqrt(h^4 + max(h^4, eps^4)), zero below the dry threshold.
-inline real velocity(real h, real q, real h_dry) {
-  if (h <= h_dry) return (real)0;
-  const real h4 = h * h * h * h;
-  const real e4 = h_dry * h_dry * h_dry * h_dry;
-  return M_SQRT2 * h * q / sqrt(h4 + fmax(h4, e4));
-}
+/// Velocity from momentum. Kurganov & Petrova (2007, eq. 2.21) desingularise it as
+/// u = sqrt(2) h q / sqrt(h^4 + max(h^4, eps^4)); with eps = h_dry that formula is exactly q / h
+/// above the dry threshold, and below it the velocity is set to zero (the momentum of films thinner
+/// than h_dry is discarded by the update), so the division never sees a tiny h.
+inline real velocity(real h, real q, real h_dry) { return h > h_dry ? q / h : (real)0; }
 
 /// Limited slope from the backward difference a and forward difference b.
 inline real limited_slope(real a, real b) {

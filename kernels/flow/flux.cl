@@ -87,21 +87,15 @@ inline CellFaces cell_faces(__constant const FlowParams* p, __global const uchar
 
 /// Flux through face (i,j) of direction dir: the face between cell (i-1,j) and (i,j) for dir 0,
 /// between (i,j-1) and (i,j) for dir 1. Face grid: (nx+1) x ny for dir 0, nx x (ny+1) for dir 1.
-__kernel void flow_face_flux(__constant const FlowParams* p, const int dir, __global const uchar* mask,
-                             __global const int* tile_active, __global const real* h, __global const real* qx,
-                             __global const real* qy, __global const real* b, __global const real* gp,
-                             __global real* face) {
-  const int i = get_global_id(0), j = get_global_id(1);
+inline void face_flux(__constant const FlowParams* p, const int dir, __global const uchar* mask,
+                      __global const real* h, __global const real* qx, __global const real* qy,
+                      __global const real* b, __global const real* gp, __global real* face, int i, int j) {
   const int fnx = p->nx + (dir == 0 ? 1 : 0), fny = p->ny + (dir == 1 ? 1 : 0);
-  if (i >= fnx || j >= fny) return;
   const int nfaces = fnx * fny;
   const int f = j * fnx + i;
   const int di = dir == 0 ? 1 : 0, dj = 1 - di;
   const int li = i - di, lj = j - dj;  // minus-side cell
   const int l_in = cell_inside(p, mask, li, lj), r_in = cell_inside(p, mask, i, j);
-  const int l_act = l_in && cell_active(p, tile_active, li, lj);
-  const int r_act = r_in && cell_active(p, tile_active, i, j);
-  if (!l_act && !r_act) return;  // neither side is updated this step: the face is not read
 
   FaceFlux flux = {0, 0, 0, 0};
   real corr_l = 0, corr_r = 0;
@@ -149,4 +143,19 @@ __kernel void flow_face_flux(__constant const FlowParams* p, const int dir, __gl
   face[3 * nfaces + f] = flux.p;
   face[4 * nfaces + f] = corr_l;
   face[5 * nfaces + f] = corr_r;
+}
+
+/// One work-group per active tile: each cell computes the face on its minus side, and the last cell
+/// of the tile (or of the raster) also the face on its plus side, so every face of an active tile is
+/// fresh. A face between two active tiles may be computed by both, with identical results.
+__kernel void flow_face_flux(__constant const FlowParams* p, const int dir, __global const uchar* mask,
+                             __global const int* tile_list, __global const real* h, __global const real* qx,
+                             __global const real* qy, __global const real* b, __global const real* gp,
+                             __global real* face) {
+  const int2 c = tile_cell(p, tile_list);
+  if (c.x >= p->nx || c.y >= p->ny) return;
+  face_flux(p, dir, mask, h, qx, qy, b, gp, face, c.x, c.y);
+  const int along = dir == 0 ? c.x : c.y, n = dir == 0 ? p->nx : p->ny;
+  if (along == n - 1 || (along % TILE) == TILE - 1)
+    face_flux(p, dir, mask, h, qx, qy, b, gp, face, c.x + (dir == 0), c.y + (dir == 1));
 }

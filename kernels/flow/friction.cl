@@ -4,18 +4,18 @@
 // which can slow a flow to rest but never reverses it.
 #include "flow/flow_common.cl"
 
-__kernel void flow_friction(__constant const FlowParams* p, __global const uchar* mask, __global const int* tile_active,
+__kernel void flow_friction(__constant const FlowParams* p, __global const uchar* mask, __global const int* tile_list,
                             __global const real* manning, __global const real* h, __global real* qx,
                             __global real* qy, const real dt) {
-  const int i = get_global_id(0), j = get_global_id(1);
-  if (i >= p->nx || j >= p->ny) return;
-  if (!cell_inside(p, mask, i, j) || !cell_active(p, tile_active, i, j)) return;
+  const int2 c = tile_cell(p, tile_list);
+  const int i = c.x, j = c.y;
+  if (i >= p->nx || j >= p->ny || !cell_inside(p, mask, i, j)) return;
   const int k = cell_index(p, i, j);
   const real hk = h[k], n = manning[k];
   if (hk <= p->h_dry || n <= (real)0) return;
   const real u = velocity(hk, qx[k], p->h_dry), v = velocity(hk, qy[k], p->h_dry);
   const real speed = sqrt(u * u + v * v);
-  const real factor = (real)1 + dt * GRAVITY * n * n * speed / pow(hk, (real)(4.0 / 3.0));
+  const real factor = (real)1 + dt * GRAVITY * n * n * speed / (hk * cbrt(hk));
   qx[k] /= factor;
   qy[k] /= factor;
 }

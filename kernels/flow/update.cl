@@ -14,16 +14,16 @@
 
 inline real face_c(__global const real* face, int nfaces, int c, int f) { return face[c * nfaces + f]; }
 
-__kernel void flow_update(__constant const FlowParams* p, __global const uchar* mask, __global const int* tile_active,
+__kernel void flow_update(__constant const FlowParams* p, __global const uchar* mask, __global const int* tile_list,
                           __global const real* face_x, __global const real* face_y, __global const real* b,
                           __global const real* gp, __global const real* gn, __global const real* h_base,
                           __global const real* qx_base, __global const real* qy_base, __global const real* h_st,
                           __global const real* qx_st, __global const real* qy_st, __global real* h_out,
                           __global real* qx_out, __global real* qy_out, __global real* out_step, const real dt,
                           const real a, const real w_out, const int first_stage) {
-  const int i = get_global_id(0), j = get_global_id(1);
-  if (i >= p->nx || j >= p->ny) return;
-  if (!cell_inside(p, mask, i, j) || !cell_active(p, tile_active, i, j)) return;
+  const int2 c = tile_cell(p, tile_list);
+  const int i = c.x, j = c.y;
+  if (i >= p->nx || j >= p->ny || !cell_inside(p, mask, i, j)) return;
   const int k = cell_index(p, i, j);
   const int nfx = (p->nx + 1) * p->ny, nfy = p->nx * (p->ny + 1);
   const int fw = j * (p->nx + 1) + i, fe = fw + 1;  // x faces west / east of the cell

@@ -26,12 +26,15 @@ double Reducer::reduce(const RealBuffer& in, std::size_t n, ReduceOp op) {
   return result_.download()[0];
 }
 
-std::vector<double> Reducer::reduceRows(const RealBuffer& in, std::size_t n, const std::vector<ReduceOp>& ops) {
+std::vector<double> Reducer::reduceRows(const RealBuffer& in, std::size_t n, const std::vector<ReduceOp>& ops,
+                                        std::size_t stride) {
+  if (stride == 0) stride = n;
   if (ops.empty() || ops.size() > 16) throw ComputeError("reduceRows needs 1 to 16 rows");
-  if (ops.size() * n > in.size()) throw ComputeError("reduceRows: rows exceed the buffer");
+  if (n > stride || (ops.size() - 1) * stride + n > in.size()) throw ComputeError("reduceRows: rows exceed the buffer");
   unsigned codes = 0;
   for (std::size_t r = 0; r < ops.size(); ++r) codes |= static_cast<unsigned>(ops[r]) << (2 * r);
-  rows_.bind(in, static_cast<unsigned>(n), codes, result_).setLocal(4, kLocal * realSize(ctx_.precision()));
+  rows_.bind(in, static_cast<unsigned>(n), static_cast<unsigned>(stride), codes, result_)
+      .setLocal(5, kLocal * realSize(ctx_.precision()));
   rows_.launch({ops.size() * kLocal}, {kLocal}, "reduce_rows");
   std::vector<double> all = result_.download();
   all.resize(ops.size());

@@ -18,9 +18,10 @@ class Reducer {
   double sum(const RealBuffer& in, std::size_t n) { return reduce(in, n, ReduceOp::Sum); }
   double min(const RealBuffer& in, std::size_t n) { return reduce(in, n, ReduceOp::Min); }
   double max(const RealBuffer& in, std::size_t n) { return reduce(in, n, ReduceOp::Max); }
-  /// Reduces ops.size() (at most 16) consecutive rows of length n of `in`, row r with ops[r], in one
-  /// launch and one read-back.
-  std::vector<double> reduceRows(const RealBuffer& in, std::size_t n, const std::vector<ReduceOp>& ops);
+  /// Reduces the first n entries of ops.size() (at most 16) rows of `in` that start every `stride`
+  /// entries (stride 0 means n), row r with ops[r], in one launch and one read-back.
+  std::vector<double> reduceRows(const RealBuffer& in, std::size_t n, const std::vector<ReduceOp>& ops,
+                                 std::size_t stride = 0);
 
  private:
   static constexpr std::size_t kLocal = 128;

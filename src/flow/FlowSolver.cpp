@@ -50,6 +50,8 @@ FlowSolver::FlowSolver(compute::Context& ctx, const Grid& grid, const FlowSettin
       mask_(ctx, grid.cells(), "mask"),
       tileActive_(ctx, static_cast<std::size_t>(tilesX_) * tilesY_, "tile active"),
       tileWet_(ctx, static_cast<std::size_t>(tilesX_) * tilesY_, "tile wet"),
+      tileList_(ctx, static_cast<std::size_t>(tilesX_) * tilesY_, "tile list"),
+      tileCount_(ctx, 1, "tile count"),
       bed_(ctx, grid.cells(), "bed"),
       gp_(ctx, grid.cells(), "g_p"),
       gn_(ctx, grid.cells(), "g_n"),
@@ -76,7 +78,7 @@ FlowSolver::FlowSolver(compute::Context& ctx, const Grid& grid, const FlowSettin
   friction_ = compute::Kernel(ctx.program("flow/friction.cl", opts), "flow_friction");
   track_ = compute::Kernel(ctx.program("flow/track.cl", opts), "flow_track_maxima");
   diagnostics_ = compute::Kernel(ctx.program("flow/diagnostics.cl", opts), "flow_tile_diagnostics");
-  activate_ = compute::Kernel(ctx.program("flow/diagnostics.cl", opts), "flow_activate_tiles");
+  compact_ = compute::Kernel(ctx.program("flow/diagnostics.cl", opts), "flow_compact_tiles");
   if (ctx.precision() == compute::Precision::Double)
     writeParams<double>(params_, grid, tilesX_, tilesY_, settings);
   else
@@ -117,7 +119,13 @@ void FlowSolver::setInput(const FlowInput& in) {
   vMax_.fill(0.0);
   arrival_.fill(-1.0);
   time_ = 0.0;
+  // Every tile runs the first diagnostics, which finds the wet tiles.
+  std::vector<int> all(static_cast<std::size_t>(tilesX_) * tilesY_);
+  std::iota(all.begin(), all.end(), 0);
+  tileList_.write(all);
   tileActive_.fill(1);
+  tileWet_.fill(0);
+  activeTiles_ = tileCount();
   enqueueTrackMaxima();
   computeDiagnostics();
 }
@@ -142,12 +150,10 @@ void FlowSolver::step(double dt) {
 
 void FlowSolver::enqueueFaceFluxes(const compute::RealBuffer& h, const compute::RealBuffer& qx,
                                    const compute::RealBuffer& qy) {
-  faceFlux_.bind(params_, 0, mask_, tileActive_, h, qx, qy, bed_, gp_, faceX_);
-  faceFlux_.launch({static_cast<std::size_t>(grid_.nx + 1), static_cast<std::size_t>(grid_.ny)}, kLocal2D,
-                   "flow_face_flux_x");
-  faceFlux_.bind(params_, 1, mask_, tileActive_, h, qx, qy, bed_, gp_, faceY_);
-  faceFlux_.launch({static_cast<std::size_t>(grid_.nx), static_cast<std::size_t>(grid_.ny + 1)}, kLocal2D,
-                   "flow_face_flux_y");
+  faceFlux_.bind(params_, 0, mask_, tileList_, h, qx, qy, bed_, gp_, faceX_);
+  faceFlux_.launch(tileRange(), kLocal2D, "flow_face_flux_x");
+  faceFlux_.bind(params_, 1, mask_, tileList_, h, qx, qy, bed_, gp_, faceY_);
+  faceFlux_.launch(tileRange(), kLocal2D, "flow_face_flux_y");
 }
 
 void FlowSolver::enqueueUpdate(const compute::RealBuffer& hSt, const compute::RealBuffer& qxSt,
@@ -156,42 +162,43 @@ void FlowSolver::enqueueUpdate(const compute::RealBuffer& hSt, const compute::Re
                                bool firstStage) {
   // Base state of the RK combination is always U0 (h_, qx_, qy_); in stage 2 the output is U0 too,
   // which is safe because each work-item reads its own cell's base value before writing it.
-  update_.bind(params_, mask_, tileActive_, faceX_, faceY_, bed_, gp_, gn_, h_, qx_, qy_, hSt, qxSt, qySt, hOut,
+  update_.bind(params_, mask_, tileList_, faceX_, faceY_, bed_, gp_, gn_, h_, qx_, qy_, hSt, qxSt, qySt, hOut,
                qxOut, qyOut, outStep_, compute::RealArg{dt}, compute::RealArg{a}, compute::RealArg{0.5 * dt},
                firstStage ? 1 : 0);
-  update_.launch({static_cast<std::size_t>(grid_.nx), static_cast<std::size_t>(grid_.ny)}, kLocal2D);
+  update_.launch(tileRange(), kLocal2D);
 }
 
 void FlowSolver::enqueueFriction(double dt) {
-  friction_.bind(params_, mask_, tileActive_, manning_, h_, qx_, qy_, compute::RealArg{dt});
-  friction_.launch({static_cast<std::size_t>(grid_.nx), static_cast<std::size_t>(grid_.ny)}, kLocal2D);
+  friction_.bind(params_, mask_, tileList_, manning_, h_, qx_, qy_, compute::RealArg{dt});
+  friction_.launch(tileRange(), kLocal2D);
 }
 
 void FlowSolver::enqueueTrackMaxima() {
-  track_.bind(params_, mask_, tileActive_, h_, qx_, qy_, hMax_, vMax_, arrival_, compute::RealArg{time_});
-  track_.launch({static_cast<std::size_t>(grid_.nx), static_cast<std::size_t>(grid_.ny)}, kLocal2D);
+  track_.bind(params_, mask_, tileList_, h_, qx_, qy_, hMax_, vMax_, arrival_, compute::RealArg{time_});
+  track_.launch(tileRange(), kLocal2D);
 }
 
 void FlowSolver::computeDiagnostics() {
-  diagnostics_.bind(params_, mask_, tileActive_, h_, qx_, qy_, gp_, outStep_, partial_, tileWet_);
-  diagnostics_.launch({static_cast<std::size_t>(tilesX_) * kTile, static_cast<std::size_t>(tilesY_) * kTile},
-                      kLocal2D);
+  const std::size_t ntiles = static_cast<std::size_t>(tilesX_) * tilesY_;
   using compute::ReduceOp;
-  const std::vector<double> r = reducer_.reduceRows(
-      partial_, static_cast<std::size_t>(tilesX_) * tilesY_,
-      {ReduceOp::Max, ReduceOp::Sum, ReduceOp::Sum, ReduceOp::Sum, ReduceOp::Min});
-  diag_.maxSpeed = r[0];
-  diag_.volume = r[1];
-  diag_.outflow = r[2];
-  diag_.kinetic = r[3];
-  diag_.minH = r[4];
-  activate_.bind(params_, tileWet_, tileActive_);
-  activate_.launch({static_cast<std::size_t>(tilesX_), static_cast<std::size_t>(tilesY_)});
+  if (activeTiles_ > 0) {
+    diagnostics_.bind(params_, mask_, tileList_, h_, qx_, qy_, gp_, outStep_, partial_, tileWet_);
+    diagnostics_.launch(tileRange(), kLocal2D);
+    const std::vector<double> r = reducer_.reduceRows(
+        partial_, static_cast<std::size_t>(activeTiles_),
+        {ReduceOp::Max, ReduceOp::Sum, ReduceOp::Sum, ReduceOp::Sum, ReduceOp::Min}, ntiles);
+    diag_ = {r[0], r[1], r[2], r[3], r[4]};
+  } else {
+    diag_ = {};
+  }
+  // Next step's active tiles: the wet tiles and their neighbours, as an ascending list.
+  compact_.bind(params_, tileWet_, tileActive_, tileList_, tileCount_);
+  compact_.launch({256}, {256});
+  activeTiles_ = tileCount_.read()[0];
 }
 
-int FlowSolver::activeTiles() const {
-  const std::vector<int> a = tileActive_.read();
-  return std::accumulate(a.begin(), a.end(), 0);
+compute::Range FlowSolver::tileRange() const {
+  return {static_cast<std::size_t>(activeTiles_) * kTile, static_cast<std::size_t>(kTile)};
 }
 
 }  // namespace talus::flow

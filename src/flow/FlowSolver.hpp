@@ -51,7 +51,7 @@ class FlowSolver {
   const Grid& grid() const { return grid_; }
   const FlowSettings& settings() const { return settings_; }
   /// Number of tiles the next step will update, and the total number of tiles.
-  int activeTiles() const;
+  int activeTiles() const { return activeTiles_; }
   int tileCount() const { return tilesX_ * tilesY_; }
 
   std::vector<double> h() const { return h_.download(); }
@@ -81,13 +81,16 @@ class FlowSolver {
 
   compute::RawBuffer params_;
   compute::Buffer<uint8_t> mask_;
-  compute::Buffer<int> tileActive_, tileWet_;
+  compute::Buffer<int> tileActive_, tileWet_, tileList_, tileCount_;
+  int activeTiles_ = 0;
   compute::RealBuffer bed_, gp_, gn_, manning_;
   compute::RealBuffer h_, qx_, qy_, h1_, qx1_, qy1_;
   compute::RealBuffer faceX_, faceY_, outStep_, partial_;
   compute::RealBuffer hMax_, vMax_, arrival_;
   compute::Reducer reducer_;
-  compute::Kernel faceFlux_, update_, friction_, track_, diagnostics_, activate_;
+  compute::Kernel faceFlux_, update_, friction_, track_, diagnostics_, compact_;
+  /// Global range covering the active tiles: one work-group of kTile x kTile per tile.
+  compute::Range tileRange() const;
 };
 
 }  // namespace talus::flow

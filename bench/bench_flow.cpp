@@ -1,0 +1,151 @@
+// Benchmark of the shallow-water step (not a test): cell-updates per second on fully wet grids for
+// float and double, the kernels' shares of a step, an effective memory bandwidth, and the effect of
+// skipping dry tiles on a mostly dry scene.
+//
+//   bench_flow [--sizes 1000,4000] [--precision float,double] [--steps N] [--device SEL]
+//
+// Effective bandwidth uses a model of the minimum traffic of one step (kBytesPerCellUpdate reals per
+// cell: two stages of face fluxes and updates, friction, maxima and diagnostics, every field read or
+// written once per kernel), so it is a lower bound of the traffic the device really served.
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "compute/Context.hpp"
+#include "core/Error.hpp"
+#include "flow/FlowSolver.hpp"
+
+using namespace talus;
+
+namespace {
+
+/// Reals moved per cell per step in the traffic model (see the header comment and docs/performance.md):
+/// per stage: x and y face kernels read 5 and write 6 each (22), the update reads 12 face values and
+/// 9 cell fields and writes 4 (25); friction 6, maxima 9, diagnostics 5.
+constexpr double kRealsPerCellUpdate = 2 * (22 + 25) + 6 + 9 + 5;
+
+std::vector<std::string> split(const std::string& s) {
+  std::vector<std::string> out;
+  std::stringstream ss(s);
+  std::string item;
+  while (std::getline(ss, item, ',')) out.push_back(item);
+  return out;
+}
+
+flow::FlowInput wetScene(const Grid& g) {
+  flow::FlowInput in;
+  const std::size_t n = g.cells();
+  in.mask.assign(n, 1);
+  in.bed.resize(n);
+  in.h.resize(n);
+  in.manning.assign(n, 0.03);
+  for (int j = 0; j < g.ny; ++j)
+    for (int i = 0; i < g.nx; ++i) {
+      const double x = (i + 0.5) / g.nx, y = (j + 0.5) / g.ny;
+      in.bed[g.index(i, j)] = 0.5 * std::sin(6.0 * x) * std::cos(5.0 * y);
+      in.h[g.index(i, j)] = 2.0 + 0.3 * std::exp(-50.0 * ((x - 0.4) * (x - 0.4) + (y - 0.5) * (y - 0.5)));
+    }
+  return in;
+}
+
+flow::FlowInput dryScene(const Grid& g, double radiusCells) {
+  flow::FlowInput in;
+  const std::size_t n = g.cells();
+  in.mask.assign(n, 1);
+  in.bed.assign(n, 0.0);
+  in.h.assign(n, 0.0);
+  in.manning.assign(n, 0.03);
+  for (int j = 0; j < g.ny; ++j)
+    for (int i = 0; i < g.nx; ++i) {
+      const double r = std::hypot(i - 0.5 * g.nx, j - 0.5 * g.ny);
+      if (r < radiusCells) in.h[g.index(i, j)] = 5.0;
+    }
+  return in;
+}
+
+/// Runs `steps` steps after one warm-up step; returns wall seconds of the timed steps.
+double timeSteps(compute::Context& ctx, flow::FlowSolver& solver, int steps) {
+  solver.step(solver.stableDt());
+  ctx.finish();
+  ctx.profiler().clear();
+  const auto t0 = std::chrono::steady_clock::now();
+  for (int s = 0; s < steps; ++s) solver.step(solver.stableDt());
+  ctx.finish();
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+void benchWet(const std::string& device, compute::Precision prec, int size, int steps) {
+  auto ctx = compute::Context::create(device, prec);
+  const Grid g = Grid::make(size, size, 1.0);
+  flow::FlowSettings settings;
+  settings.edge = flow::Boundary::Wall;
+  flow::FlowSolver solver(*ctx, g, settings);
+  solver.setInput(wetScene(g));
+  const double seconds = timeSteps(*ctx, solver, steps);
+  const double rate = static_cast<double>(g.cells()) * steps / seconds;
+  const double gbs = rate * kRealsPerCellUpdate * compute::realSize(prec) / 1e9;
+  std::printf("wet %5dx%-5d %-6s  %3d steps  %8.3f s  %10.4g cell-updates/s  %7.2f GB/s effective\n", size, size,
+              compute::precisionName(prec), steps, seconds, rate, gbs);
+  std::printf("%s\n", ctx->profiler().report().c_str());
+}
+
+void benchDryTiles(const std::string& device, int size, int steps) {
+  auto ctx = compute::Context::create(device, compute::Precision::Float);
+  const Grid g = Grid::make(size, size, 1.0);
+  double rates[2];
+  int active = 0;
+  for (int skip = 0; skip < 2; ++skip) {
+    flow::FlowSettings settings;
+    settings.skipDryTiles = skip == 1;
+    flow::FlowSolver solver(*ctx, g, settings);
+    solver.setInput(dryScene(g, 0.03 * size));
+    const double seconds = timeSteps(*ctx, solver, steps);
+    rates[skip] = static_cast<double>(g.cells()) * steps / seconds;
+    if (skip) active = solver.activeTiles();
+    std::printf("mostly dry %dx%d float, skip dry tiles %-3s  %3d steps  %8.3f s  %10.4g cell-updates/s\n", size, size,
+                skip ? "on" : "off", steps, seconds, rates[skip]);
+    if (skip) std::printf("  active tiles %d of %d\n", active, solver.tileCount());
+  }
+  std::printf("  speed-up from skipping dry tiles: %.1fx\n\n", rates[1] / rates[0]);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<std::string> sizes = {"1000", "4000"}, precisions = {"float", "double"};
+  std::string device;
+  int steps = 10;
+  for (int a = 1; a < argc; ++a) {
+    const std::string arg = argv[a];
+    const bool more = a + 1 < argc;
+    if (arg == "--sizes" && more) sizes = split(argv[++a]);
+    else if (arg == "--precision" && more) precisions = split(argv[++a]);
+    else if (arg == "--steps" && more) steps = std::atoi(argv[++a]);
+    else if (arg == "--device" && more) device = argv[++a];
+    else {
+      std::fprintf(stderr, "usage: bench_flow [--sizes 1000,4000] [--precision float,double] [--steps N] [--device SEL]\n");
+      return 1;
+    }
+  }
+  try {
+    std::printf("device: %s\n\n", compute::selectDevice(device).describe().c_str());
+    for (const std::string& p : precisions)
+      for (const std::string& s : sizes) {
+        const int size = std::atoi(s.c_str());
+        try {
+          benchWet(device, compute::parsePrecision(p), size, size >= 4000 ? std::max(2, steps / 4) : steps);
+        } catch (const ComputeError& e) {
+          std::printf("wet %dx%d %s: not run: %s\n\n", size, size, p.c_str(), e.what());
+        }
+      }
+    benchDryTiles(device, 2000, steps);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "bench_flow: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}
