@@ -1,5 +1,5 @@
 // Running maxima and arrival time for the output maps (spec §8): maximum thickness, maximum speed,
-// first time the thickness reaches the arrival threshold (-1 until then).
+// first time the thickness exceeds the arrival threshold (-1 until then).
 #include "flow/flow_common.cl"
 
 __kernel void flow_track_maxima(__constant const FlowParams* p, __global const uchar* mask,
@@ -14,5 +14,5 @@ __kernel void flow_track_maxima(__constant const FlowParams* p, __global const u
   const real u = velocity(hk, qx[k], p->h_dry), v = velocity(hk, qy[k], p->h_dry);
   h_max[k] = fmax(h_max[k], hk);
   v_max[k] = fmax(v_max[k], sqrt(u * u + v * v));
-  if (arrival[k] < (real)0 && hk >= p->arrival_h && hk > (real)0) arrival[k] = t;
+  if (arrival[k] < (real)0 && hk > p->arrival_h) arrival[k] = t;
 }

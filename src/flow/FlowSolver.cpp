@@ -86,7 +86,7 @@ FlowSolver::FlowSolver(compute::Context& ctx, const Grid& grid, const FlowSettin
   outStep_.fill(0.0);
 }
 
-void FlowSolver::setInput(const FlowInput& in) {
+void FlowSolver::setInput(const FlowInput& in, double startTime) {
   const std::size_t n = grid_.cells();
   auto need = [&](std::size_t size, const char* what) {
     if (size != n) throw InputError(std::string("flow input '") + what + "' has " + std::to_string(size) +
@@ -118,7 +118,7 @@ void FlowSolver::setInput(const FlowInput& in) {
   hMax_.upload(h);
   vMax_.fill(0.0);
   arrival_.fill(-1.0);
-  time_ = 0.0;
+  time_ = startTime;
   // Every tile runs the first diagnostics, which finds the wet tiles.
   std::vector<int> all(static_cast<std::size_t>(tilesX_) * tilesY_);
   std::iota(all.begin(), all.end(), 0);

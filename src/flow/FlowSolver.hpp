@@ -38,8 +38,9 @@ class FlowSolver {
  public:
   FlowSolver(compute::Context& ctx, const Grid& grid, const FlowSettings& settings);
 
-  /// Uploads a scene, resets time, maxima and arrival, and computes the first diagnostics.
-  void setInput(const FlowInput& in);
+  /// Uploads a scene, sets the time to `startTime` [s], resets maxima and arrival (cells wet at the
+  /// start arrive at startTime) and computes the first diagnostics.
+  void setInput(const FlowInput& in, double startTime = 0.0);
   /// The CFL time step of the current state (infinite when everything is at rest and dry).
   double stableDt() const;
   /// Advances by dt (caller keeps dt <= stableDt()).

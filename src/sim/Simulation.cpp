@@ -33,8 +33,7 @@ Simulation::Simulation(const Scene& scene, const io::RunConfig& config, const st
   out_->writeText("run.resolved.run", config.echo());
   ctx_ = compute::Context::create(scene.device, compute::parsePrecision(scene.precision));
   solver_ = std::make_unique<flow::FlowSolver>(*ctx_, scene.dem.grid, scene.settings);
-  solver_->setInput(scene.flow);
-  solver_->setTime(scene.startTime);
+  solver_->setInput(scene.flow, scene.startTime);
   for (uint8_t v : scene.dem.valid) domainCells_ += v;
 }
 

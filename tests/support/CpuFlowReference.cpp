@@ -41,13 +41,9 @@ bool CpuFlowReference::inside(int i, int j) const {
   return i >= 0 && j >= 0 && i < grid_.nx && j < grid_.ny && mask_[grid_.index(i, j)] != 0;
 }
 
-// Kurganov & Petrova (2007) eq. 2.21 with eps = h_dry, and zero at or below the dry threshold.
-double CpuFlowReference::velocity(double h, double q) const {
-  const double eps = settings_.hDry;
-  if (h <= eps) return 0.0;
-  const double h4 = h * h * h * h;
-  return std::sqrt(2.0) * h * q / std::sqrt(h4 + std::max(h4, eps * eps * eps * eps));
-}
+// Kurganov & Petrova's (2007, eq. 2.21) desingularised velocity with eps = h_dry is exactly q / h
+// above the dry threshold; below it the velocity is zero (flow_common.cl).
+double CpuFlowReference::velocity(double h, double q) const { return h > settings_.hDry ? q / h : 0.0; }
 
 // Slope from the backward difference a and the forward difference b; zero at extrema.
 double CpuFlowReference::limiter(double a, double b) const {
@@ -167,7 +163,7 @@ CpuFlowReference::FaceFlux CpuFlowReference::faceFlux(const State& s, int i, int
   return f;
 }
 
-double CpuFlowReference::rkStage(const State& s, const State* base, double dt, State& out) const {
+double CpuFlowReference::rkStage(const State& s, const State* base, double dt, State& out, double& added) const {
   const int nx = grid_.nx, ny = grid_.ny;
   std::vector<FaceFlux> fx(static_cast<std::size_t>(nx + 1) * ny), fy(static_cast<std::size_t>(nx) * (ny + 1));
   for (int j = 0; j < ny; ++j)
@@ -212,7 +208,10 @@ double CpuFlowReference::rkStage(const State& s, const State* base, double dt, S
         qx = 0.5 * base->qx[k] + 0.5 * qx;
         qy = 0.5 * base->qy[k] + 0.5 * qy;
       }
-      if (h <= settings_.hDry) h = std::max(h, 0.0), qx = 0.0, qy = 0.0;
+      if (h <= settings_.hDry) {
+        if (h < 0.0) added -= h * grid_.dx * grid_.dx;  // volume the clamp creates (see header)
+        h = std::max(h, 0.0), qx = 0.0, qy = 0.0;
+      }
       out.h[k] = h, out.qx[k] = qx, out.qy[k] = qy;
       if (!inside(i - 1, j)) outward -= W.mass;
       if (!inside(i + 1, j)) outward += E.mass;
@@ -267,8 +266,11 @@ double CpuFlowReference::stableDt() const {
 void CpuFlowReference::step(double dt) {
   const State u0{h_, qx_, qy_};
   State u1, u2;
-  const double out1 = rkStage(u0, nullptr, dt, u1);
-  const double out2 = rkStage(u1, &u0, dt, u2);
+  double added1 = 0.0, added2 = 0.0;
+  const double out1 = rkStage(u0, nullptr, dt, u1, added1);
+  const double out2 = rkStage(u1, &u0, dt, u2, added2);
+  // A negative stage-1 value is clamped before the RK average, which then counts it half.
+  clampedVolume_ = 0.5 * added1 + added2;
   h_ = u2.h, qx_ = u2.qx, qy_ = u2.qy;
   friction(dt);
   time_ += dt;

@@ -47,6 +47,9 @@ class CpuFlowReference {
   const std::vector<double>& gp() const { return gp_; }
   const std::vector<double>& gn() const { return gn_; }
   bool inside(int i, int j) const;
+  /// Volume [m^3] the dry-cell rule created in the last step by raising negative thicknesses to 0.
+  /// Zero when the scheme stays positive; then volume(before) - volume(after) == outflow.
+  double clampedVolume() const { return clampedVolume_; }
 
   /// Numerical flux through one face, as the update consumes it (see kernels/flow/flux.cl).
   struct FaceFlux {
@@ -75,7 +78,7 @@ class CpuFlowReference {
   FaceFlux faceFlux(const State& s, int i, int j, int dir) const;
   /// out = base/2 + (s + dt L(s))/2 when base is given, else s + dt L(s); returns the outward
   /// mass flux summed over boundary faces [m^2/s].
-  double rkStage(const State& s, const State* base, double dt, State& out) const;
+  double rkStage(const State& s, const State* base, double dt, State& out, double& added) const;
   void friction(double dt);
   void track();
   void computeDiagnostics(double outflowVolume);
@@ -86,6 +89,7 @@ class CpuFlowReference {
   std::vector<double> bed_, manning_, gn_, gp_;
   std::vector<double> h_, qx_, qy_, hMax_, vMax_, arrival_;
   double time_ = 0;
+  double clampedVolume_ = 0;
   flow::FlowDiagnostics diag_;
 };
 

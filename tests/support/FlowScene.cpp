@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <random>
 #include <stdexcept>
 #include <string>
 
@@ -31,6 +32,21 @@ flow::FlowInput makeInput(const Grid& grid, const Field& bed, const Field& h, co
       if (qy) in.qy[k] = qy(x, y);
     }
   return in;
+}
+
+std::vector<double> roughDem(const Grid& g, unsigned seed, double noise) {
+  constexpr double kPi = 3.14159265358979323846;
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> uniform(-noise, noise);
+  std::vector<double> b(g.cells());
+  const double lx = g.nx * g.dx, ly = g.ny * g.dx;
+  for (int j = 0; j < g.ny; ++j)
+    for (int i = 0; i < g.nx; ++i) {
+      const double x = cellX(g, i), y = cellY(g, j);
+      b[g.index(i, j)] = 0.8 * std::sin(3 * kPi * x / lx) * std::cos(2 * kPi * y / ly) +
+                         0.4 * std::cos(5 * kPi * x / lx + 1.0) * std::sin(3 * kPi * y / ly) + uniform(rng);
+    }
+  return b;
 }
 
 namespace {

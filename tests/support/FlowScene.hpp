@@ -31,11 +31,27 @@ inline double cellY(const Grid& g, int j) { return (j + 0.5) * g.dx; }
 flow::FlowInput makeInput(const Grid& grid, const Field& bed, const Field& h, const Field& qx = {},
                           const Field& qy = {}, double manning = 0.0);
 
+/// A rough DEM for well-balancing and conservation tests: two smooth hill patterns of amplitude
+/// 0.8 m and 0.4 m across the grid plus per-cell uniform noise in [-noise, noise] from a fixed
+/// std::mt19937 seed, so every run of the suite sees the same bed.
+std::vector<double> roughDem(const Grid& grid, unsigned seed, double noise = 0.5);
+
 /// When a run stops: at `endTime` (the last step is shortened to land on it) or after `maxSteps`
 /// steps, whichever comes first.
 struct RunLimits {
   double endTime = std::numeric_limits<double>::infinity();
   int maxSteps = std::numeric_limits<int>::max();
+
+  static RunLimits until(double t) {
+    RunLimits r;
+    r.endTime = t;
+    return r;
+  }
+  static RunLimits steps(int n) {
+    RunLimits r;
+    r.maxSteps = n;
+    return r;
+  }
 };
 
 /// Everything a test needs from a finished run.
