@@ -107,8 +107,17 @@ void FlowSolver::setInput(const FlowInput& in, double startTime) {
   gp_.upload(sg.gp);
   gn_.upload(sg.gn);
   h_.upload(h);
-  if (in.qx.empty()) qx_.fill(0.0); else need(in.qx.size(), "qx"), qx_.upload(in.qx);
-  if (in.qy.empty()) qy_.fill(0.0); else need(in.qy.size(), "qy"), qy_.upload(in.qy);
+  // Momentum of dry and outside cells is discarded, as the update does after every stage.
+  auto momentum = [&](const std::vector<double>& q, const char* what) {
+    if (q.empty()) return std::vector<double>(n, 0.0);
+    need(q.size(), what);
+    std::vector<double> out = q;
+    for (std::size_t k = 0; k < n; ++k)
+      if (h[k] <= settings_.hDry) out[k] = 0.0;
+    return out;
+  };
+  qx_.upload(momentum(in.qx, "qx"));
+  qy_.upload(momentum(in.qy, "qy"));
   h1_.fill(0.0);
   qx1_.fill(0.0);
   qy1_.fill(0.0);

@@ -6,8 +6,8 @@
 // on analytic planes, dry-tile skipping (bitwise equal to no skipping), and one float comparison.
 //
 // Tolerances (double). Both sides evaluate the same formulas in IEEE double, but not in the same
-// order (the device may contract a*b+c into fma, sums of face terms are grouped differently, pow
-// may differ by a few ulps). Each updated value is a sum of terms that are at most a few times the
+// order (the device may contract a*b+c into fma, sums of face terms are grouped differently, cbrt
+// and pow may differ by a few ulps). Each updated value is a sum of terms that are at most a few times the
 // field's scale (h itself; for momentum the advective flux q u and the pressure g h^2 / 2, both
 // times dt/dx = CFL / wave speed, which is at most max|q| + max h sqrt(g h)), so the result carries
 // an absolute error of a few ulps of that scale per operation, a few hundred operations per step
@@ -29,6 +29,7 @@
 
 #include "compute/Context.hpp"
 #include "core/Constants.hpp"
+#include "core/Error.hpp"
 #include "core/Grid.hpp"
 #include "flow/FlowSettings.hpp"
 #include "flow/FlowSolver.hpp"
@@ -49,9 +50,9 @@ struct Scene {
   FlowInput input;
 };
 
-/// A random scene on nx x ny cells: a tilted rough bed, ~25% dry cells, a few cells straddling the
-/// dry threshold, random velocities up to 2 m/s (and stray momentum on dry cells, which must be
-/// ignored), Manning n in [0, 0.08] with some zeros, ~3% nodata cells plus a small nodata block.
+/// A random scene on nx x ny cells: a tilted rough bed, ~25% dry cells (h = 0, q = 0), optionally
+/// ~5% thin cells straddling the dry threshold, random velocities up to 2 m/s (q = h u), Manning n
+/// in [0, 0.08] with some zeros, ~3% nodata cells plus a small nodata block.
 Scene randomScene(unsigned seed, const FlowSettings& settings, bool thinCells = true, int nx = 37, int ny = 23,
                   double dx = 2.5) {
   std::mt19937_64 rng(seed);
@@ -128,19 +129,22 @@ void expectSolverMatches(const FlowSolver& dev, const CpuFlowReference& ref, con
   expectFieldsNear("qx", dev.qx(), ref.qx(), mask, rel * qScale, g);
   expectFieldsNear("qy", dev.qy(), ref.qy(), mask, rel * qScale, g);
   expectFieldsNear("hMax", dev.hMax(), ref.hMax(), mask, rel * hScale, g);
-  // Speeds |q| / h inherit the momentum error divided by h: compare them relative to the speed
-  // scale with the same margin, plus the h-error amplification at thin cells (h >= 1e-6 there).
+  // Speeds q / h inherit the relative errors of q and h; at a thin cell the absolute error of h
+  // (ulps of hScale) is a larger fraction of h. The allowance covers cells down to 1 mm at the
+  // fastest speed (measured errors are far smaller).
   const double vScale = scaleOf(ref.vMax(), mask);
   expectFieldsNear("vMax", dev.vMax(), ref.vMax(), mask, rel * vScale * (1.0 + hScale / 1e-3), g);
   const std::vector<double> arrival = dev.arrival();
-  for (std::size_t k = 0; k < arrival.size(); ++k)
-    if (mask[k]) ASSERT_EQ(arrival[k], ref.arrival()[k]) << "arrival at cell " << k;
+  for (std::size_t k = 0; k < arrival.size(); ++k) {
+    if (!mask[k]) continue;
+    ASSERT_EQ(arrival[k], ref.arrival()[k]) << "arrival at cell " << k;  // the same sums of dt, exactly
+  }
 
-  // Diagnostics: sums of positive terms (volume, kinetic energy) to `rel`; the outflow to `rel`
-  // of the volume-flux scale; the wave speed to `rel`.
+  // Diagnostics: sums of positive terms (volume, kinetic energy) and the wave speed to `rel`; the
+  // outflow, a sum of signed face fluxes, to `rel` of the volume.
   const FlowDiagnostics &d = dev.diagnostics(), &r = ref.diagnostics();
   EXPECT_NEAR(d.volume, r.volume, rel * r.volume);
-  EXPECT_NEAR(d.kinetic, r.kinetic, rel * (r.kinetic + r.volume * qScale * qScale / std::max(hScale, 1e-3)));
+  EXPECT_NEAR(d.kinetic, r.kinetic, rel * r.kinetic);
   EXPECT_NEAR(d.maxSpeed, r.maxSpeed, rel * r.maxSpeed);
   EXPECT_NEAR(d.outflow, r.outflow, rel * (std::fabs(r.outflow) + r.volume));
   EXPECT_NEAR(dev.stableDt(), ref.stableDt(), rel * ref.stableDt());
@@ -159,20 +163,24 @@ void runAndCompare(const Scene& s, Precision precision, int steps, double rel) {
   for (int n = 1; n <= steps; ++n) {
     SCOPED_TRACE("after step " + std::to_string(n));
     ASSERT_EQ(dev.activeTiles(), dev.tileCount()) << "the CPU reference updates every cell";
-    const double volumeBefore = ref.diagnostics().volume;
+    const double volumeBefore = ref.diagnostics().volume, deviceVolumeBefore = dev.diagnostics().volume;
     const double dt = 0.5 * dev.stableDt();
     ASSERT_TRUE(std::isfinite(dt) && dt > 0);
     dev.step(dt);
     ref.step(dt);
     EXPECT_EQ(dev.time(), ref.time());
     expectSolverMatches(dev, ref, s.input, rel);
-    // Conservation of the reference itself: the volume changes only by the outflow and by what the
-    // dry-cell rule adds when it lifts a negative thickness to zero (not round-off on these harsh
-    // random scenes: see FlowKernels.StaysPositiveAndConservative).
+    // Exact conservation, on both sides: interior fluxes cancel, so the volume changes only by the
+    // boundary outflow (to the rounding of the volume sums, ~n eps V). That needs positivity: the
+    // dry-cell rule must never have had to lift a negative thickness (beyond round-off) to zero.
     EXPECT_NEAR(volumeBefore - ref.diagnostics().volume + ref.clampedVolume(), ref.diagnostics().outflow,
                 1e-12 * volumeBefore);
-    EXPECT_EQ(ref.clampedVolume(), 0.0);
+    EXPECT_LE(ref.clampedVolume(), 1e-12 * volumeBefore) << "the scheme lost positivity";
+    EXPECT_NEAR(deviceVolumeBefore - dev.diagnostics().volume, dev.diagnostics().outflow, 1e-12 * volumeBefore);
   }
+  // The arrival comparison means something only if some cell arrived during the run.
+  const std::vector<double>& arrival = ref.arrival();
+  EXPECT_GT(std::count_if(arrival.begin(), arrival.end(), [](double t) { return t > 0; }), 0);
 }
 
 /// One configuration of the random-scene comparison.
@@ -288,10 +296,48 @@ TEST_F(FlowKernels, SlopeGravityMatchesAnalyticPlanes) {
       FlowSolver solver(talus::test::testContext(Precision::Double), grid, s);
       solver.setInput(in);
       const std::vector<double> gp = solver.gp();
-      for (std::size_t k = 0; k < grid.cells(); ++k)
-        if (mask[k]) ASSERT_EQ(gp[k], sg.gp[k]) << "cell " << k;
+      for (std::size_t k = 0; k < grid.cells(); ++k) {
+        if (!mask[k]) continue;
+        ASSERT_EQ(gp[k], sg.gp[k]) << "cell " << k;
+      }
     }
   }
+}
+
+TEST_F(FlowKernels, MomentumGivenOnDryInputCellsIsDiscarded) {
+  // Velocities are zero at h <= h_dry and the update zeroes the momentum there, so momentum given
+  // on dry cells in the input means nothing: the solver must either reject it (InputError) or run
+  // exactly as if it were zero. Otherwise a dry cell that receives a thin film keeps that momentum
+  // and its velocity q / h explodes (seen: |u| ~ 2e4 m/s after one stage, CFL ~ 600 in stage 2,
+  // negative thickness clamped to zero, volume created).
+  FlowSettings s;
+  Scene clean = randomScene(4242, s, /*thinCells=*/false);
+  Scene stray = clean;
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> uni(-0.5, 0.5);
+  int dry = 0;
+  for (std::size_t k = 0; k < stray.input.h.size(); ++k)
+    if (stray.input.h[k] <= s.hDry) stray.input.qx[k] = uni(rng), stray.input.qy[k] = uni(rng), ++dry;
+  ASSERT_GT(dry, 50);
+  compute::Context& ctx = talus::test::testContext(Precision::Double);
+  FlowSolver a(ctx, clean.grid, s), b(ctx, stray.grid, s);
+  a.setInput(clean.input);
+  try {
+    b.setInput(stray.input);
+  } catch (const InputError&) {
+    return;  // rejecting such input is fine too
+  }
+  for (int n = 0; n < 2; ++n) {
+    const double dt = 0.5 * a.stableDt();
+    a.step(dt);
+    b.step(dt);
+  }
+  const std::vector<uint8_t>& mask = clean.input.mask;
+  const double hScale = scaleOf(a.h(), mask), qScale = momentumScale(a.h(), a.qx(), a.qy(), mask);
+  expectFieldsNear("h", b.h(), a.h(), mask, 1e-12 * hScale, clean.grid);
+  expectFieldsNear("qx", b.qx(), a.qx(), mask, 1e-12 * qScale, clean.grid);
+  expectFieldsNear("qy", b.qy(), a.qy(), mask, 1e-12 * qScale, clean.grid);
+  EXPECT_NEAR(b.diagnostics().maxSpeed, a.diagnostics().maxSpeed, 1e-12 * a.diagnostics().maxSpeed);
 }
 
 TEST_F(FlowKernels, TileSkippingIsBitwiseIdentical) {
@@ -375,12 +421,16 @@ TEST_F(FlowKernels, FloatMatchesCpuReferenceWithinFloatRounding) {
   const double eps = FLT_EPSILON;
   const double hScale = scaleOf(ref.h(), mask), bScale = scaleOf(scene.input.bed, mask);
   const double qScale = momentumScale(ref.h(), ref.qx(), ref.qy(), mask);
-  const double tolH = 64 * eps * (hScale + bScale), tolQ = 64 * eps * qScale * (1 + bScale / hScale);
-  if (std::getenv("TALUS_TEST_VERBOSE")) std::fprintf(stderr, "float: hScale %g bScale %g qScale %g\n", hScale, bScale, qScale);
+  // Float rounding: the device forms eta = h + b (absolute error eps/2 (|b| + h)), reconstructs
+  // faces, and each flux and update is some tens of operations on operands no larger than those
+  // scales, each adding at most eps/2 of its operand. So h errs by O(10) eps (|b| + h), and q by
+  // the same fraction of the momentum scale. We allow 16 eps (measured: ~0.2 eps).
+  const double tolH = 16 * eps * (hScale + bScale), tolQ = 16 * eps * qScale * (1 + bScale / hScale);
   expectFieldsNear("h (float)", dev.h(), ref.h(), mask, tolH, scene.grid);
   expectFieldsNear("qx (float)", dev.qx(), ref.qx(), mask, tolQ, scene.grid);
   expectFieldsNear("qy (float)", dev.qy(), ref.qy(), mask, tolQ, scene.grid);
-  EXPECT_NEAR(dev.diagnostics().volume, ref.diagnostics().volume, 64 * eps * ref.diagnostics().volume);
+  // The volume: a float sum over ~850 cells in a tree of depth ~10 (see test_reduce.cpp).
+  EXPECT_NEAR(dev.diagnostics().volume, ref.diagnostics().volume, 16 * eps * ref.diagnostics().volume);
 }
 
 }  // namespace

@@ -27,6 +27,9 @@ CpuFlowReference::CpuFlowReference(const Grid& grid, const flow::FlowSettings& s
   if (qy_.empty()) qy_.assign(n, 0.0);
   for (std::size_t k = 0; k < n; ++k)
     if (!mask_[k]) h_[k] = 0.0, bed_[k] = 0.0;
+  // The dry-cell rule applies to the input too: no momentum where h <= h_dry (or outside).
+  for (std::size_t k = 0; k < n; ++k)
+    if (h_[k] <= settings_.hDry) qx_[k] = 0.0, qy_[k] = 0.0;
   const flow::SlopeGravity sg = flow::computeSlopeGravity(grid, bed_, in.mask, settings);
   gn_ = sg.gn;
   gp_ = sg.gp;
@@ -239,7 +242,7 @@ void CpuFlowReference::track() {
     const double u = velocity(h_[k], qx_[k]), v = velocity(h_[k], qy_[k]);
     hMax_[k] = std::max(hMax_[k], h_[k]);
     vMax_[k] = std::max(vMax_[k], std::sqrt(u * u + v * v));
-    if (arrival_[k] < 0.0 && h_[k] >= settings_.arrivalH && h_[k] > 0.0) arrival_[k] = time_;
+    if (arrival_[k] < 0.0 && h_[k] > settings_.arrivalH) arrival_[k] = time_;
   }
 }
 

@@ -12,6 +12,8 @@
 // and the (g_p - g_n) h db/dx term of the cos^4 depth-pressure option. Outside cells (nodata or
 // off the raster) are ghost cells: mirrored with the normal velocity reversed at walls, copied at
 // open boundaries. The dry-cell rule: h <= h_dry sets the momentum to zero and h to max(h, 0).
+// Velocities are q / h above h_dry and zero below; Manning friction uses g (as friction.cl states).
+// Like FlowSolver::setInput, the constructor discards input momentum on dry and outside cells.
 //
 // Tiles are ignored: every inside cell is updated every step, which equals the device only when
 // all tiles are active (or when the skipped tiles are dry, as they are by construction).

@@ -33,7 +33,7 @@ flow::FlowInput makeInput(const Grid& grid, const Field& bed, const Field& h, co
 
 /// A rough DEM for well-balancing and conservation tests: two smooth hill patterns of amplitude
 /// 0.8 m and 0.4 m across the grid plus per-cell uniform noise in [-noise, noise] from a fixed
-/// std::mt19937 seed, so every run of the suite sees the same bed.
+/// std::mt19937 seed, so every run of the suite (with one standard library) sees the same bed.
 std::vector<double> roughDem(const Grid& grid, unsigned seed, double noise = 0.5);
 
 /// When a run stops: at `endTime` (the last step is shortened to land on it) or after `maxSteps`

@@ -107,7 +107,7 @@ constexpr double kMinOrder = 0.7;
 constexpr double kVolumeTol = 1e-12;
 
 TEST(Thacker, PlanarOscillationOnePeriod) {
-  // 200^2 takes about 17 s on two PoCL cores (1289 steps), inside the suite's budget.
+  // 200^2 takes 17 to 25 s on two PoCL cores (1289 steps), inside the suite's budget.
   std::vector<ThackerErrors> e;
   for (int n : {50, 100, 200}) e.push_back(runThacker(n));
   report(e);

@@ -88,7 +88,8 @@ const char* limiterName(fl::Limiter l) {
 // gives accelerations of order g * slope, i.e. > 1e-3 m/s after one step. Hence 1e-10 m/s in
 // double (1000x above the round-off bound, 1e7x below a real imbalance) and 1e-4 m/s in float
 // (eps = 1.2e-7: the same bound scaled by 5e8 gives ~1e-5 m/s after 200 steps). The surface
-// stays flat to the rounding of h + b, ~1e-15 m; 1e-12 m is the bound in double.
+// stays flat to the rounding of h + b, ~1e-15 m in double (bound 1e-12 m) and ~1e-7 m in float
+// (bound 1e-5 m).
 constexpr double kSpeedTolDouble = 1e-10, kSpeedTolFloat = 1e-4;
 constexpr double kSurfaceTolDouble = 1e-12, kSurfaceTolFloat = 1e-5;
 // Depth that initially dry island cells may gain: a rounding film (see the test), far below hDry,
