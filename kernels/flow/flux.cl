@@ -112,16 +112,17 @@ inline void face_flux(__constant const FlowParams* p, const int dir, __global co
       hr = cf.h_lo; er = cf.e_lo; ur = cf.un_lo; vr = cf.ut_lo;
       gr = gp[cell_index(p, i, j)];
     }
+    // Ghosts: a wall mirrors the inside state with the normal velocity reversed; an open boundary is
+    // outflow only: it copies the inside state (zero gradient) while the inside flow moves towards
+    // it, and acts as a wall while the flow moves away, so no water ever enters through it.
     int wall = 0;
     if (!l_in) {
-      const int kind = boundary_kind(p, li, lj);
-      wall = kind == BOUNDARY_WALL;
+      wall = boundary_kind(p, li, lj) == BOUNDARY_WALL || ur > (real)0;
       hl = hr; el = er; vl = vr; gl = gr;
       ul = wall ? -ur : ur;
     }
     if (!r_in) {
-      const int kind = boundary_kind(p, i, j);
-      wall = kind == BOUNDARY_WALL;
+      wall = boundary_kind(p, i, j) == BOUNDARY_WALL || ul < (real)0;
       hr = hl; er = el; vr = vl; gr = gl;
       ur = wall ? -ul : ul;
     }

@@ -140,19 +140,20 @@ CpuFlowReference::FaceFlux CpuFlowReference::faceFlux(const State& s, int i, int
     const Faces c = reconstruct(s, i, j, dir);
     R = {c.hLo, c.etaLo, c.unLo, c.utLo, gp_[grid_.index(i, j)]};
   }
-  // Ghost cell: a copy of the inside face state, normal velocity mirrored at a wall.
+  // Ghost cell: a copy of the inside face state, normal velocity mirrored at a wall. An open
+  // boundary lets water out only: while the inside flow moves away from it, it is a wall.
   auto kind = [&](int a, int b) {
     const bool offRaster = a < 0 || b < 0 || a >= grid_.nx || b >= grid_.ny;
     return offRaster ? settings_.edge : settings_.nodata;
   };
   bool wall = false;
   if (!lIn) {
-    wall = kind(li, lj) == Boundary::Wall;
+    wall = kind(li, lj) == Boundary::Wall || R.un > 0.0;
     L = R;
     if (wall) L.un = -R.un;
   }
   if (!rIn) {
-    wall = kind(i, j) == Boundary::Wall;
+    wall = kind(i, j) == Boundary::Wall || L.un < 0.0;
     R = L;
     if (wall) R.un = -L.un;
   }

@@ -82,8 +82,8 @@ TEST(Conservation, ClosedBasinVolumeToRoundOff) {
   // Open: the raster edge lets water leave; V(t) + cumulative outflow must still equal V0.
   fl::FlowSettings open;
   open.edge = fl::Boundary::Open;
-  // The per-step tally is signed: the open edge is a zero-gradient ghost, which also passes water
-  // inwards where an edge cell's velocity points into the domain (reported, not asserted here).
+  // The per-step tally is signed. Open edges are outflow-only (a wall while the edge cell's flow
+  // points into the domain), so no step may bring water in: the tally must never be negative.
   int inflowSteps = 0;
   double inflow = 0, exchange = 0;
   const auto o = talus::test::runFlow(grid, in, open, talus::test::RunLimits::steps(kSteps),
@@ -102,6 +102,7 @@ TEST(Conservation, ClosedBasinVolumeToRoundOff) {
   EXPECT_GT(exchange, 0.05 * o.volume0) << "the open edge must pass real volumes for the balance to mean anything";
   EXPECT_LT(openBalance, kVolumeTol);
   EXPECT_LT(openHostBalance, kVolumeTol);
+  EXPECT_EQ(inflowSteps, 0) << "water entered through an outflow-only open edge";
   RecordProperty("closed_volume_drift", std::to_string(closedDrift));
   RecordProperty("open_volume_balance", std::to_string(openBalance));
 }
