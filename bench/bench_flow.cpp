@@ -4,9 +4,9 @@
 //
 //   bench_flow [--sizes 1000,4000] [--precision float,double] [--steps N] [--device SEL]
 //
-// Effective bandwidth uses a model of the minimum traffic of one step (kBytesPerCellUpdate reals per
-// cell: two stages of face fluxes and updates, friction, maxima and diagnostics, every field read or
-// written once per kernel), so it is a lower bound of the traffic the device really served.
+// Effective bandwidth uses a model of the minimum traffic of one step (kRealsPerCellUpdate reals per
+// cell: two fused stages, friction, maxima and diagnostics, every field read or written once per
+// kernel), so it is a lower bound of the traffic the device really served.
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -23,10 +23,11 @@ using namespace talus;
 
 namespace {
 
-/// Reals moved per cell per step in the traffic model (see the header comment and docs/performance.md):
-/// per stage: x and y face kernels read 5 and write 6 each (22), the update reads 12 face values and
-/// 9 cell fields and writes 4 (25); friction 6, maxima 9, diagnostics 5.
-constexpr double kRealsPerCellUpdate = 2 * (22 + 25) + 6 + 9 + 5;
+/// Reals moved per cell per step in the traffic model (see docs/performance.md): each fused stage
+/// reads the tile with its two-cell halo (20^2 / 16^2 = 1.5625 times) of h, qx, qy, b, g_p (and a
+/// byte of mask), g_n and the RK base state (3), and writes 3 fields and the outflow (16 in all);
+/// friction moves 6, maxima 9, diagnostics 5.
+constexpr double kRealsPerCellUpdate = 2 * 16 + 6 + 9 + 5;
 
 std::vector<std::string> split(const std::string& s) {
   std::vector<std::string> out;

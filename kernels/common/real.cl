@@ -3,6 +3,10 @@
 #ifndef TALUS_REAL_CL
 #define TALUS_REAL_CL
 
+// No fused multiply-add contraction: the same expression must round the same way wherever it is
+// inlined (a face flux computed by both of its cells must agree bitwise for exact conservation).
+#pragma OPENCL FP_CONTRACT OFF
+
 #if TALUS_DOUBLE
 #pragma OPENCL EXTENSION cl_khr_fp64 : enable
 typedef double real;

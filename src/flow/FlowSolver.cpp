@@ -13,7 +13,6 @@
 namespace talus::flow {
 namespace {
 
-constexpr int kFaceComponents = 6;     // see kernels/flow/flux.cl
 constexpr int kDiagnosticRows = 5;     // see kernels/flow/diagnostics.cl
 const compute::Range kLocal2D{kTile, kTile};
 
@@ -62,8 +61,6 @@ FlowSolver::FlowSolver(compute::Context& ctx, const Grid& grid, const FlowSettin
       h1_(ctx, grid.cells(), "h stage"),
       qx1_(ctx, grid.cells(), "qx stage"),
       qy1_(ctx, grid.cells(), "qy stage"),
-      faceX_(ctx, kFaceComponents * static_cast<std::size_t>(grid.nx + 1) * grid.ny, "x faces"),
-      faceY_(ctx, kFaceComponents * static_cast<std::size_t>(grid.nx) * (grid.ny + 1), "y faces"),
       outStep_(ctx, grid.cells(), "outflow per step"),
       partial_(ctx, kDiagnosticRows * static_cast<std::size_t>(tilesX_) * tilesY_, "tile partials"),
       hMax_(ctx, grid.cells(), "h max"),
@@ -73,8 +70,7 @@ FlowSolver::FlowSolver(compute::Context& ctx, const Grid& grid, const FlowSettin
   if (grid.nx < 1 || grid.ny < 1 || !(grid.dx > 0)) throw InputError("flow solver needs a grid of at least 1x1 cells");
   if (!(settings.cfl > 0 && settings.cfl <= 1)) throw InputError("CFL must lie in (0, 1]");
   const std::string opts = buildOptions(settings);
-  faceFlux_ = compute::Kernel(ctx.program("flow/flux.cl", opts), "flow_face_flux");
-  update_ = compute::Kernel(ctx.program("flow/update.cl", opts), "flow_update");
+  stage_ = compute::Kernel(ctx.program("flow/stage.cl", opts), "flow_stage");
   friction_ = compute::Kernel(ctx.program("flow/friction.cl", opts), "flow_friction");
   track_ = compute::Kernel(ctx.program("flow/track.cl", opts), "flow_track_maxima");
   diagnostics_ = compute::Kernel(ctx.program("flow/diagnostics.cl", opts), "flow_tile_diagnostics");
@@ -121,8 +117,6 @@ void FlowSolver::setInput(const FlowInput& in, double startTime) {
   h1_.fill(0.0);
   qx1_.fill(0.0);
   qy1_.fill(0.0);
-  faceX_.fill(0.0);
-  faceY_.fill(0.0);
   outStep_.fill(0.0);
   hMax_.upload(h);
   vMax_.fill(0.0);
@@ -147,34 +141,23 @@ double FlowSolver::stableDt() const {
 
 void FlowSolver::step(double dt) {
   if (!(dt > 0) || !std::isfinite(dt)) throw SimulationError("flow step with invalid dt " + std::to_string(dt));
-  enqueueFaceFluxes(h_, qx_, qy_);
-  enqueueUpdate(h_, qx_, qy_, h1_, qx1_, qy1_, dt, 0.0, true);
-  enqueueFaceFluxes(h1_, qx1_, qy1_);
-  enqueueUpdate(h1_, qx1_, qy1_, h_, qx_, qy_, dt, 0.5, false);
+  enqueueStage(h_, qx_, qy_, h1_, qx1_, qy1_, dt, 0.0, true);
+  enqueueStage(h1_, qx1_, qy1_, h_, qx_, qy_, dt, 0.5, false);
   enqueueFriction(dt);
   time_ += dt;
   enqueueTrackMaxima();
   computeDiagnostics();
 }
 
-void FlowSolver::enqueueFaceFluxes(const compute::RealBuffer& h, const compute::RealBuffer& qx,
-                                   const compute::RealBuffer& qy) {
-  faceFlux_.bind(params_, 0, mask_, tileList_, h, qx, qy, bed_, gp_, faceX_);
-  faceFlux_.launch(tileRange(), kLocal2D, "flow_face_flux_x");
-  faceFlux_.bind(params_, 1, mask_, tileList_, h, qx, qy, bed_, gp_, faceY_);
-  faceFlux_.launch(tileRange(), kLocal2D, "flow_face_flux_y");
-}
-
-void FlowSolver::enqueueUpdate(const compute::RealBuffer& hSt, const compute::RealBuffer& qxSt,
+void FlowSolver::enqueueStage(const compute::RealBuffer& hSt, const compute::RealBuffer& qxSt,
                                const compute::RealBuffer& qySt, compute::RealBuffer& hOut,
                                compute::RealBuffer& qxOut, compute::RealBuffer& qyOut, double dt, double a,
                                bool firstStage) {
   // Base state of the RK combination is always U0 (h_, qx_, qy_); in stage 2 the output is U0 too,
   // which is safe because each work-item reads its own cell's base value before writing it.
-  update_.bind(params_, mask_, tileList_, faceX_, faceY_, bed_, gp_, gn_, h_, qx_, qy_, hSt, qxSt, qySt, hOut,
-               qxOut, qyOut, outStep_, compute::RealArg{dt}, compute::RealArg{a}, compute::RealArg{0.5 * dt},
-               firstStage ? 1 : 0);
-  update_.launch(tileRange(), kLocal2D);
+  stage_.bind(params_, mask_, tileList_, bed_, gp_, gn_, h_, qx_, qy_, hSt, qxSt, qySt, hOut, qxOut, qyOut,
+              outStep_, compute::RealArg{dt}, compute::RealArg{a}, compute::RealArg{0.5 * dt}, firstStage ? 1 : 0);
+  stage_.launch(tileRange(), kLocal2D, firstStage ? "flow_stage_1" : "flow_stage_2");
 }
 
 void FlowSolver::enqueueFriction(double dt) {

@@ -1,7 +1,7 @@
 // The shallow-water grid solver on the device (spec §4 with h_s = 0, numerics in docs/numerics.md).
 // One step is a short list of named phases:
-//   stage 1: faces(U0) -> update(U1 = U0 + dt L(U0))
-//   stage 2: faces(U1) -> update(U0 = U0/2 + (U1 + dt L(U1))/2)     (SSP-RK2)
+//   stage 1: U1 = U0 + dt L(U0)                   (flow_stage: reconstruction, fluxes, update)
+//   stage 2: U0 = U0/2 + (U1 + dt L(U1))/2        (SSP-RK2)
 //   friction (semi-implicit Manning) -> maxima -> diagnostics and next active tiles.
 #pragma once
 #include <cstdint>
@@ -65,8 +65,7 @@ class FlowSolver {
   std::vector<double> gp() const { return gp_.download(); }
 
  private:
-  void enqueueFaceFluxes(const compute::RealBuffer& h, const compute::RealBuffer& qx, const compute::RealBuffer& qy);
-  void enqueueUpdate(const compute::RealBuffer& hSt, const compute::RealBuffer& qxSt, const compute::RealBuffer& qySt,
+  void enqueueStage(const compute::RealBuffer& hSt, const compute::RealBuffer& qxSt, const compute::RealBuffer& qySt,
                      compute::RealBuffer& hOut, compute::RealBuffer& qxOut, compute::RealBuffer& qyOut, double dt,
                      double a, bool firstStage);
   void enqueueFriction(double dt);
@@ -86,10 +85,10 @@ class FlowSolver {
   int activeTiles_ = 0;
   compute::RealBuffer bed_, gp_, gn_, manning_;
   compute::RealBuffer h_, qx_, qy_, h1_, qx1_, qy1_;
-  compute::RealBuffer faceX_, faceY_, outStep_, partial_;
+  compute::RealBuffer outStep_, partial_;
   compute::RealBuffer hMax_, vMax_, arrival_;
   compute::Reducer reducer_;
-  compute::Kernel faceFlux_, update_, friction_, track_, diagnostics_, compact_;
+  compute::Kernel stage_, friction_, track_, diagnostics_, compact_;
   /// Global range covering the active tiles: one work-group of kTile x kTile per tile.
   compute::Range tileRange() const;
 };

@@ -53,7 +53,7 @@ class CpuFlowReference {
   /// Zero when the scheme stays positive; then volume(before) - volume(after) == outflow.
   double clampedVolume() const { return clampedVolume_; }
 
-  /// Numerical flux through one face, as the update consumes it (see kernels/flow/flux.cl).
+  /// Numerical flux through one face, as the update consumes it (see kernels/flow/riemann.cl).
   struct FaceFlux {
     double mass = 0, normalMomentum = 0, tangentialMomentum = 0, pressure = 0;
     double corrMinus = 0, corrPlus = 0;  ///< hydrostatic corrections (h^2 - h*^2) / 2 per side

@@ -4,7 +4,7 @@
 //    cells, so the interior fluxes cancel in pairs in the total; walls pass no mass. The total
 //    volume can change only by rounding, O(eps) relative per step per cell at worst and in practice
 //    a random walk far below that. With open edges, what the boundary faces pass must be exactly
-//    what the solver reports as outflow (diagnostics().outflow, kernels/flow/update.cl).
+//    what the solver reports as outflow (diagnostics().outflow, kernels/flow/stage.cl).
 //  - Symmetry: the x and y sweeps share one kernel with the roles of the axes swapped, so a
 //    radially symmetric dam break on a square grid must stay symmetric under x <-> y and under the
 //    mirror reflections of the axes.

@@ -184,7 +184,7 @@ TEST(DamBreak, StokerConverges) {
       hllcErrors = e;
     } else {
       // In 1D the tangential velocity is zero everywhere, and the solver's HLLC differs from HLL
-      // only in the tangential momentum flux (kernels/flow/flux.cl), so the runs coincide.
+      // only in the tangential momentum flux (kernels/flow/riemann.cl), so the runs coincide.
       bool same = true;
       for (std::size_t k = 0; k < e.size(); ++k) same = same && e[k].errH == hllcErrors[k].errH;
       std::printf("  HLL and HLLC errors %s\n", same ? "identical (expected in 1D)" : "differ");

@@ -1,6 +1,6 @@
 // Well-balancing of the shallow-water solver: a lake at rest over a rough bed must stay at rest
 // to round-off (Audusse et al. 2004 hydrostatic reconstruction, with each cell applying its own
-// slope-corrected g_p to both the face pressures and its bed source, kernels/flow/update.cl), for
+// slope-corrected g_p to both the face pressures and its bed source, kernels/flow/stage.cl), for
 // every limiter, with and without the slope correction of spec §1, across wet/dry shorelines
 // around dry islands. And the documented exception: with the cos^4 depth-pressure option the bed
 // and pressure terms use different gravities, a flat lake over a slope is not an equilibrium of

@@ -1,0 +1,117 @@
+// Numerical flux through one cell face for the shallow-water equations in horizontal coordinates
+// with vertical thickness h (spec §4 with h_s = 0):
+//   h_t + div(h u) = 0,
+//   (h u)_t + div(h u u) + g_p h grad h = -g_n h grad b.
+// From the MUSCL face values of the two cells beside the face: ghost states at boundaries, the
+// hydrostatic reconstruction of Audusse et al. (2004, SIAM J. Sci. Comput. 25, eq. 2.7-2.9) for
+// well-balancing and positivity, and an HLL (Harten, Lax & van Leer 1983) or HLLC (Toro 2001,
+// "Shock-capturing methods for free-surface shallow flows", ch. 10) flux.
+//
+// The hydrostatic pressure part of the normal-momentum flux is returned without its factor g, so
+// each cell multiplies it by its own slope-corrected g_p (spec §1); this keeps a lake at rest exact
+// where g_p varies from cell to cell.
+#ifndef TALUS_FLOW_RIEMANN_CL
+#define TALUS_FLOW_RIEMANN_CL
+#include "flow/flow_common.cl"
+
+typedef struct {
+  real fh, fqn, fqt, p;
+} FaceFlux;
+
+/// HLL/HLLC flux between left state (hl, ul, vl) and right state (hr, ur, vr), u normal, v tangential.
+/// g sets the wave speeds (Toro 2001 two-rarefaction estimates with the dry-bed speeds).
+inline FaceFlux riemann_flux(real hl, real ul, real vl, real hr, real ur, real vr, real g) {
+  FaceFlux f = {0, 0, 0, 0};
+  if (hl <= (real)0 && hr <= (real)0) return f;
+  const real cl = sqrt(g * hl), cr = sqrt(g * hr);
+  real sl, sr;
+  if (hl <= (real)0) {
+    sl = ur - (real)2 * cr;
+    sr = ur + cr;
+  } else if (hr <= (real)0) {
+    sl = ul - cl;
+    sr = ul + (real)2 * cl;
+  } else {
+    const real us = (real)0.5 * (ul + ur) + cl - cr;
+    const real cs = (real)0.5 * (cl + cr) + (real)0.25 * (ul - ur);
+    sl = fmin(ul - cl, us - cs);
+    sr = fmax(ur + cr, us + cs);
+  }
+  const real ql = hl * ul, qr = hr * ur;
+  const real pl = (real)0.5 * hl * hl, pr = (real)0.5 * hr * hr;
+  if (sl >= (real)0) {
+    f.fh = ql;
+    f.fqn = ql * ul;
+    f.fqt = ql * vl;
+    f.p = pl;
+    return f;
+  }
+  if (sr <= (real)0) {
+    f.fh = qr;
+    f.fqn = qr * ur;
+    f.fqt = qr * vr;
+    f.p = pr;
+    return f;
+  }
+  const real inv = (real)1 / (sr - sl);
+  f.fh = (sr * ql - sl * qr + sl * sr * (hr - hl)) * inv;
+  f.fqn = (sr * ql * ul - sl * qr * ur + sl * sr * (qr - ql)) * inv;
+  f.p = (sr * pl - sl * pr) * inv;
+#if RIEMANN == 1
+  // HLLC: the tangential velocity is a passive scalar carried across the contact wave s*.
+  const real denom = hr * (ur - sr) - hl * (ul - sl);
+  const real ss = fabs(denom) > (real)0 ? (sl * hr * (ur - sr) - sr * hl * (ul - sl)) / denom : (real)0.5 * (sl + sr);
+  f.fqt = f.fh * (ss >= (real)0 ? vl : vr);
+#else
+  f.fqt = (sr * ql * vl - sl * qr * vr + sl * sr * (hr * vr - hl * vl)) * inv;
+#endif
+  return f;
+}
+
+/// Face value of one side: thickness, free surface, normal and tangential velocity, and g_p of its cell.
+typedef struct {
+  real h, e, un, ut, g;
+} Side;
+
+/// Everything a cell needs from one of its faces.
+typedef struct {
+  real fh;      // mass flux (per unit width, along +dir)
+  real fqn;     // normal momentum flux without the pressure part
+  real fqt;     // tangential momentum flux
+  real p;       // HLL pressure flux P (the cell adds g_p * P)
+  real corr_m;  // hydrostatic correction of the minus-side cell (h_face^2 - h*^2) / 2
+  real corr_p;  // same for the plus-side cell
+} Face;
+
+/// The face between side m (minus) and side p (plus). An outside side (m_in or p_in zero) becomes
+/// the ghost of the inside one: a wall mirrors it with the normal velocity reversed; an open
+/// boundary (kind BOUNDARY_OPEN) is outflow only: it copies the inside state (zero gradient) while
+/// the inside flow moves towards it, and acts as a wall while the flow moves away, so no water ever
+/// enters through it. Walls pass no mass and no tangential momentum.
+inline Face face_between(int m_in, Side m, int p_in, Side p, int kind) {
+  Face f = {0, 0, 0, 0, 0, 0};
+  if (!m_in && !p_in) return f;
+  int wall = 0;
+  if (!m_in) {
+    wall = kind == BOUNDARY_WALL || p.un > (real)0;
+    m = p;
+    m.un = wall ? -p.un : p.un;
+  } else if (!p_in) {
+    wall = kind == BOUNDARY_WALL || m.un < (real)0;
+    p = m;
+    p.un = wall ? -m.un : m.un;
+  }
+  // Hydrostatic reconstruction: the face bed is the higher of the two face beds.
+  const real bs = fmax(m.e - m.h, p.e - p.h);
+  const real hm = fmax((real)0, m.e - bs), hp = fmax((real)0, p.e - bs);
+  const FaceFlux r = riemann_flux(hm, m.un, m.ut, hp, p.un, p.ut, fmax(m.g, p.g));
+  f.fh = wall ? (real)0 : r.fh;
+  f.fqn = r.fqn;
+  f.fqt = wall ? (real)0 : r.fqt;
+  f.p = r.p;
+  f.corr_m = (real)0.5 * (m.h * m.h - hm * hm);
+  f.corr_p = (real)0.5 * (p.h * p.h - hp * hp);
+  return f;
+}
+
+#endif
