@@ -99,6 +99,8 @@ void FlowSolver::setInput(const FlowInput& in, double startTime) {
     if (!in.mask[k]) h[k] = 0.0, bed[k] = 0.0;
   bed_.upload(bed);
   manning_.upload(in.manning);
+  hasFriction_ = false;
+  for (std::size_t k = 0; k < n; ++k) hasFriction_ = hasFriction_ || (in.mask[k] && in.manning[k] > 0.0);
   const SlopeGravity sg = computeSlopeGravity(grid_, bed, in.mask, settings_);
   gp_.upload(sg.gp);
   gn_.upload(sg.gn);
@@ -143,7 +145,7 @@ void FlowSolver::step(double dt) {
   if (!(dt > 0) || !std::isfinite(dt)) throw SimulationError("flow step with invalid dt " + std::to_string(dt));
   enqueueStage(h_, qx_, qy_, h1_, qx1_, qy1_, dt, 0.0, true);
   enqueueStage(h1_, qx1_, qy1_, h_, qx_, qy_, dt, 0.5, false);
-  enqueueFriction(dt);
+  if (hasFriction_) enqueueFriction(dt);
   time_ += dt;
   enqueueTrackMaxima();
   computeDiagnostics();

@@ -83,6 +83,7 @@ class FlowSolver {
   compute::Buffer<uint8_t> mask_;
   compute::Buffer<int> tileActive_, tileWet_, tileList_, tileCount_;
   int activeTiles_ = 0;
+  bool hasFriction_ = true;  ///< false when Manning's n is zero everywhere: friction is not launched
   compute::RealBuffer bed_, gp_, gn_, manning_;
   compute::RealBuffer h_, qx_, qy_, h1_, qx1_, qy1_;
   compute::RealBuffer outStep_, partial_;
