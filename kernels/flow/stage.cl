@@ -86,7 +86,10 @@ void flow_stage(__constant const FlowParams* p, __global const uchar* mask, __gl
   const real g = lg[sc];
   const real dtdx = dt / p->dx;
 
-  real dh = 0, dq[2] = {0, 0}, out = 0;
+  // Per direction: mass flux difference, normal and tangential momentum terms. The two directions
+  // are added only at the end, with commutative sums, so a scene and its x<->y transpose give
+  // bitwise transposed results.
+  real mass[2], normal[2], tangential[2], out = 0;
   for (int dir = 0; dir < 2; ++dir) {
     const int da = dir == 0, db = dir == 1;
     const int sm = sc - db * SPAN - da, sp = sc + db * SPAN + da;
@@ -99,7 +102,7 @@ void flow_stage(__constant const FlowParams* p, __global const uchar* mask, __gl
     if (p_in) nb = local_faces(lh, le, lu, lv, lin, la + da, lb + db, dir);
     const Face fp = face_between(1, side_hi(own, g), p_in, side_lo(nb, lg[sp]), boundary_kind(p, i + da, j + db));
 
-    dh -= dtdx * (fp.fh - fm.fh);
+    mass[dir] = fp.fh - fm.fh;
     // Normal momentum: advective flux, pressure with the cell's own g_p, hydrostatic corrections,
     // and the centred well-balanced bed source from the cell's own reconstruction.
     real s = (fp.fqn + g * (fp.p + fp.corr_m)) - (fm.fqn + g * (fm.p + fm.corr_p));
@@ -109,11 +112,13 @@ void flow_stage(__constant const FlowParams* p, __global const uchar* mask, __gl
       if (dg != (real)0 && m_in && p_in)
         s -= dg * lh[sc] * (real)0.5 * ((le[sp] - lh[sp]) - (le[sm] - lh[sm]));
     }
-    dq[dir] -= dtdx * s;
-    dq[1 - dir] -= dtdx * (fp.fqt - fm.fqt);  // tangential momentum
+    normal[dir] = s;
+    tangential[dir] = fp.fqt - fm.fqt;  // moves the other direction's momentum
     if (!m_in) out -= fm.fh;
     if (!p_in) out += fp.fh;
   }
+  const real dh = -dtdx * (mass[0] + mass[1]);
+  const real dq[2] = {-dtdx * (normal[0] + tangential[1]), -dtdx * (normal[1] + tangential[0])};
 
   real hn = h_st[k] + dh;
   real qxn = qx_st[k] + dq[0];
