@@ -15,16 +15,23 @@ std::string cellText(const Grid& g, int i, int j) {
 }
 
 /// Reads a map key (a raster on the DEM's grid, or a number) as values times the multiplier.
-/// Cells inside the DEM's domain must hold finite data; `minValue` is checked there too.
+/// Cells inside the DEM's domain must hold finite data within the key's declared range.
 std::vector<double> loadMap(const io::RunConfig& cfg, const std::string& key, const Raster& dem,
-                            const std::string& demPath, double minValue) {
+                            const std::string& demPath) {
+  const io::KeySpec* spec = cfg.registry().find(key);
+  const double lo = spec ? spec->min : -HUGE_VAL, hi = spec ? spec->max : HUGE_VAL;
+  const std::string unit = spec && !spec->unit.empty() ? " " + spec->unit : "";
+  auto range = [&] {
+    std::ostringstream o;
+    o << "[" << lo << ", " << hi << "]" << unit;
+    return o.str();
+  };
   const io::MapValue mv = cfg.map(key);
   const std::size_t n = dem.grid.cells();
   if (!mv.isFile) {
     const double v = mv.constant * mv.multiplier;
-    if (!std::isfinite(v) || v < minValue)
-      throw InputError(cfg.origin(key) + ": key '" + key + "': value " + std::to_string(v) + " is below " +
-                       std::to_string(minValue));
+    if (!std::isfinite(v) || v < lo || v > hi)
+      throw InputError(cfg.origin(key) + ": key '" + key + "': value " + std::to_string(v) + " is outside " + range());
     return std::vector<double>(n, v);
   }
   const Raster r = io::readRaster(mv.file);
@@ -38,9 +45,9 @@ std::vector<double> loadMap(const io::RunConfig& cfg, const std::string& key, co
         throw InputError("map '" + mv.file + "' (key '" + key + "') has no data at " + cellText(dem.grid, i, j) +
                          ", which is inside the DEM's domain");
       const double v = r.values[k] * mv.multiplier;
-      if (v < minValue)
+      if (v < lo || v > hi)
         throw InputError("map '" + mv.file + "' (key '" + key + "') has value " + std::to_string(v) + " at " +
-                         cellText(dem.grid, i, j) + "; the smallest allowed is " + std::to_string(minValue));
+                         cellText(dem.grid, i, j) + ", outside the valid range " + range());
       out[k] = v;
     }
   return out;
@@ -63,9 +70,9 @@ Scene loadScene(const io::RunConfig& cfg) {
   const Grid& g = s.dem.grid;
   s.flow.mask = s.dem.valid;
   s.flow.bed = s.dem.values;
-  s.flow.manning = loadMap(cfg, "Manning", s.dem, demKey.file, 0.0);
+  s.flow.manning = loadMap(cfg, "Manning", s.dem, demKey.file);
   if (cfg.flag("Include Initial Water"))
-    s.flow.h = loadMap(cfg, "Initial Fluid Height", s.dem, demKey.file, 0.0);
+    s.flow.h = loadMap(cfg, "Initial Fluid Height", s.dem, demKey.file);
   else
     s.flow.h.assign(g.cells(), 0.0);
 
