@@ -1,6 +1,7 @@
 // talus: the headless command line.
 //   talus run SCENE.run [--out DIR] [--device SEL] [--precision float|double] [--set "Key=Value"]...
 //             [--overwrite] [--quiet]
+//   talus run --resume DIR [--device SEL] [--set "Key=Value"]... [--quiet]
 //   talus devices
 //   talus keys [--markdown]
 // Exit status: 0 success, 1 usage or unexpected error, 2 bad input, 3 compute device error,
@@ -25,6 +26,7 @@ void usage(std::FILE* f) {
   std::fprintf(f,
                "usage: talus run SCENE.run [--out DIR] [--device SEL] [--precision float|double]\n"
                "                 [--set \"Key=Value\"]... [--overwrite] [--quiet]\n"
+               "       talus run --resume DIR [--device SEL] [--set \"Key=Value\"]... [--quiet]\n"
                "       talus devices\n"
                "       talus keys [--markdown]\n"
                "The device can also be chosen with the environment variable TALUS_DEVICE (index or name).\n");
@@ -77,7 +79,7 @@ class ProgressPrinter {
 };
 
 int runScene(int argc, char** argv) {
-  std::string runFile, outDir, device, precision;
+  std::string runFile, outDir, device, precision, resumeDir;
   std::vector<std::string> sets;
   bool overwrite = false, quiet = false;
   for (int a = 2; a < argc; ++a) {
@@ -91,10 +93,19 @@ int runScene(int argc, char** argv) {
     else if (arg == "--precision") precision = value("--precision");
     else if (arg == "--set") sets.push_back(value("--set"));
     else if (arg == "--overwrite") overwrite = true;
+    else if (arg == "--resume") resumeDir = value("--resume");
     else if (arg == "--quiet") quiet = true;
     else if (!arg.empty() && arg[0] == '-') throw talus::InputError("unknown option '" + arg + "'");
     else if (runFile.empty()) runFile = arg;
     else throw talus::InputError("more than one run-file given ('" + runFile + "' and '" + arg + "')");
+  }
+  if (!resumeDir.empty()) {
+    // A resumed run reads the resolved configuration its first part echoed into the folder.
+    if (!runFile.empty() || !outDir.empty() || overwrite || !precision.empty())
+      throw talus::InputError("--resume DIR takes the run-file, output folder and precision from DIR; "
+                              "do not give them again");
+    runFile = resumeDir + "/run.resolved.run";
+    outDir = resumeDir;
   }
   if (runFile.empty()) throw talus::InputError("talus run: no run-file given");
   talus::io::RunConfig config = talus::io::RunConfig::load(runFile, talus::talusRunKeys());
@@ -102,11 +113,15 @@ int runScene(int argc, char** argv) {
   if (!device.empty()) config.set("Device=" + device);
   if (!precision.empty()) config.set("Precision=" + precision);
   const talus::sim::Scene scene = talus::sim::loadScene(config);
-  talus::sim::Simulation sim(scene, config, outDir, overwrite);
+  using talus::sim::OutputMode;
+  const OutputMode mode = !resumeDir.empty() ? OutputMode::Resume : overwrite ? OutputMode::Overwrite : OutputMode::New;
+  talus::sim::Simulation sim(scene, config, outDir, mode);
   if (!quiet)
-    std::fprintf(stderr, "talus: %s on %s (%s), grid %dx%d of %g m\n", runFile.c_str(),
+    std::fprintf(stderr, "talus: %s on %s (%s), grid %dx%d of %g m%s\n", runFile.c_str(),
                  sim.context().device().name.c_str(), scene.precision.c_str(), scene.dem.grid.nx, scene.dem.grid.ny,
-                 scene.dem.grid.dx);
+                 scene.dem.grid.dx,
+                 mode == OutputMode::Resume ? (", resuming at t = " + std::to_string(sim.resumeTime()) + " s").c_str()
+                                            : "");
   ProgressPrinter printer(quiet);
   const talus::sim::RunSummary s = sim.run([&](const talus::sim::Progress& p) { printer(p); });
   if (!quiet)
@@ -139,7 +154,10 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "\ntalus: device error: %s\n", e.what());
     return 3;
   } catch (const talus::SimulationError& e) {
-    std::fprintf(stderr, "\ntalus: %s\ntalus: the maps and diagnostics written so far are kept\n", e.what());
+    std::fprintf(stderr,
+                 "\ntalus: %s\ntalus: the maps and diagnostics written so far are kept; with a checkpoint the run "
+                 "can be continued by `talus run --resume DIR` (e.g. with --set \"CFL=...\")\n",
+                 e.what());
     return 4;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "\ntalus: unexpected error: %s\n", e.what());

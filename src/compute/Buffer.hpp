@@ -87,6 +87,7 @@ class RealBuffer {
   void fill(double value);
   void copyFrom(const RealBuffer& src) { raw_.copyFrom(src.raw_); }
   RawBuffer& raw() { return raw_; }
+  const RawBuffer& raw() const { return raw_; }
 
  private:
   RawBuffer raw_;

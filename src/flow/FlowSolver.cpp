@@ -191,6 +191,31 @@ void FlowSolver::computeDiagnostics() {
   activeTiles_ = tileCount_.read()[0];
 }
 
+std::vector<char> FlowSolver::saveState() const {
+  const compute::RealBuffer* fields[] = {&h_, &qx_, &qy_, &hMax_, &vMax_, &arrival_};
+  const std::size_t each = fields[0]->raw().bytes();
+  std::vector<char> bytes(each * 6);
+  for (int f = 0; f < 6; ++f) fields[f]->raw().readBytes(bytes.data() + f * each, each);
+  return bytes;
+}
+
+void FlowSolver::restoreState(const std::vector<char>& bytes, double time) {
+  compute::RealBuffer* fields[] = {&h_, &qx_, &qy_, &hMax_, &vMax_, &arrival_};
+  const std::size_t each = fields[0]->raw().bytes();
+  if (bytes.size() != each * 6)
+    throw InputError("checkpoint state has " + std::to_string(bytes.size()) + " bytes, this grid and precision need " +
+                     std::to_string(each * 6));
+  for (int f = 0; f < 6; ++f) fields[f]->raw().writeBytes(bytes.data() + f * each, each);
+  time_ = time;
+  // Diagnostics and the active tiles follow from the state alone: recompute them over every tile.
+  std::vector<int> all(static_cast<std::size_t>(tilesX_) * tilesY_);
+  std::iota(all.begin(), all.end(), 0);
+  tileList_.write(all);
+  activeTiles_ = tileCount();
+  outStep_.fill(0.0);
+  computeDiagnostics();
+}
+
 compute::Range FlowSolver::tileRange() const {
   return {static_cast<std::size_t>(activeTiles_) * kTile, static_cast<std::size_t>(kTile)};
 }

@@ -61,6 +61,11 @@ class FlowSolver {
   std::vector<double> hMax() const { return hMax_.download(); }
   std::vector<double> vMax() const { return vMax_.download(); }
   std::vector<double> arrival() const { return arrival_.download(); }
+  /// The evolving state as the device holds it (h, qx, qy, maxima, arrival; raw bytes of the run's
+  /// precision) and the time, for checkpoints. restoreState() after setInput() of the same scene
+  /// continues bitwise as if the run had not stopped.
+  std::vector<char> saveState() const;
+  void restoreState(const std::vector<char>& bytes, double time);
   /// Slope-corrected gravities as uploaded (for tests).
   std::vector<double> gp() const { return gp_.download(); }
 

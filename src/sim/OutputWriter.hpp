@@ -13,8 +13,10 @@ namespace talus::sim {
 class OutputWriter {
  public:
   /// Prepares `dir` (created if missing). A folder that already holds a run (summary.json or
-  /// diagnostics.csv) is refused unless `overwrite`. Throws InputError naming the folder.
-  OutputWriter(const std::string& dir, const Raster& dem, io::RasterFormat format, bool overwrite);
+  /// diagnostics.csv) is refused unless `overwrite` or `resume`; `resume` keeps the run's files
+  /// (see truncateDiagnostics). Throws InputError naming the folder.
+  OutputWriter(const std::string& dir, const Raster& dem, io::RasterFormat format, bool overwrite,
+               bool resume = false);
   ~OutputWriter();
   OutputWriter(const OutputWriter&) = delete;
   OutputWriter& operator=(const OutputWriter&) = delete;
@@ -24,6 +26,9 @@ class OutputWriter {
   void writeMap(const std::string& name, const std::vector<double>& values, const double* nodataValue = nullptr);
   /// Writes a text file atomically (temporary file, then rename).
   void writeText(const std::string& name, const std::string& content);
+  /// Resuming: keeps the header and the first `rows` data rows of diagnostics.csv (a row cut by a
+  /// kill is dropped) and appends after them. Throws InputError when fewer rows exist.
+  void truncateDiagnostics(const std::string& header, long long rows);
   /// Appends one line to diagnostics.csv (the header is written on the first call) and flushes it.
   void appendDiagnostics(const std::string& header, const std::string& line);
   std::string path(const std::string& name) const { return dir_ + "/" + name; }

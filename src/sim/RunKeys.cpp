@@ -137,7 +137,11 @@ void addOutputKeys(KeyRegistry& r) {
       << text("Output Directory", "output",
               "folder the results are written to (relative to the run-file's folder)", KeyType::Directory)
       << choice("Output Format", {"geotiff", "pcraster"}, "geotiff", "raster format of the outputs")
-      << flag("Report Series", "1", "write time-series maps every Timestep");
+      << flag("Report Series", "1", "write time-series maps every Timestep")
+      << real("Checkpoint Interval", "0", "min", 0, 1e6,
+              "simulated time between checkpoints for `talus run --resume` (0: none)")
+      << real("Checkpoint Wall Interval", "10", "min", 0, 1e6,
+              "wall-clock time between checkpoints (0: none); short runs never reach it");
 }
 
 KeyRegistry buildKeys() {

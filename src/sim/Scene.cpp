@@ -96,6 +96,8 @@ Scene loadScene(const io::RunConfig& cfg) {
   s.outputDir = cfg.directory("Output Directory");
   s.format = cfg.choice("Output Format") == "pcraster" ? io::RasterFormat::PCRaster : io::RasterFormat::GeoTiff;
   s.reportSeries = cfg.flag("Report Series");
+  s.checkpointInterval = 60.0 * cfg.real("Checkpoint Interval");
+  s.checkpointWallInterval = 60.0 * cfg.real("Checkpoint Wall Interval");
   return s;
 }
 

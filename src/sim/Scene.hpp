@@ -24,6 +24,8 @@ struct Scene {
   std::string outputDir;         ///< absolute
   io::RasterFormat format = io::RasterFormat::GeoTiff;
   bool reportSeries = true;
+  double checkpointInterval = 0;      ///< simulated seconds between checkpoints (0: none)
+  double checkpointWallInterval = 0;  ///< wall seconds between checkpoints (0: none)
 };
 
 /// Builds the scene of a parsed run-file. Throws InputError naming the file, key or cell at fault.

@@ -3,9 +3,11 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <algorithm>
 #include <sstream>
 
 #include "core/Error.hpp"
+#include "sim/Checkpoint.hpp"
 
 namespace talus::sim {
 namespace {
@@ -27,44 +29,40 @@ std::string jsonEscape(const std::string& s) {
 
 }  // namespace
 
-Simulation::Simulation(const Scene& scene, const io::RunConfig& config, const std::string& outDir, bool overwrite)
+Simulation::Simulation(const Scene& scene, const io::RunConfig& config, const std::string& outDir, OutputMode mode)
     : scene_(scene), config_(config) {
-  out_ = std::make_unique<OutputWriter>(outDir.empty() ? scene.outputDir : outDir, scene.dem, scene.format, overwrite);
-  out_->writeText("run.resolved.run", config.echo());
+  out_ = std::make_unique<OutputWriter>(outDir.empty() ? scene.outputDir : outDir, scene.dem, scene.format,
+                                        mode == OutputMode::Overwrite, mode == OutputMode::Resume);
   ctx_ = compute::Context::create(scene.device, compute::parsePrecision(scene.precision));
   solver_ = std::make_unique<flow::FlowSolver>(*ctx_, scene.dem.grid, scene.settings);
   solver_->setInput(scene.flow, scene.startTime);
+  health_ = std::make_unique<HealthCheck>(scene.dem, scene.flow, scene.settings.cfl);
   for (uint8_t v : scene.dem.valid) domainCells_ += v;
-}
-
-void Simulation::checkHealth(long long step, double dt) {
-  const flow::FlowDiagnostics& d = solver_->diagnostics();
-  std::ostringstream why;
-  if (!std::isfinite(d.volume) || !std::isfinite(d.maxSpeed) || !std::isfinite(d.kinetic)) {
-    // Locate the first non-finite cell for the diagnosis (a full read-back only on failure).
-    const std::vector<double> h = solver_->h(), qx = solver_->qx(), qy = solver_->qy();
-    const Grid& g = scene_.dem.grid;
-    for (int j = 0; j < g.ny && why.str().empty(); ++j)
-      for (int i = 0; i < g.nx; ++i) {
-        const std::size_t k = g.index(i, j);
-        if (!std::isfinite(h[k]) || !std::isfinite(qx[k]) || !std::isfinite(qy[k])) {
-          why << "non-finite state (h = " << h[k] << ", qx = " << qx[k] << ", qy = " << qy[k] << ") in cell (column "
-              << i << ", row " << j << ") at x = " << g.cellX(i) << ", y = " << g.cellY(j);
-          break;
-        }
-      }
-    if (why.str().empty()) why << "non-finite diagnostics (volume " << d.volume << ")";
-  } else if (d.minH < 0) {
-    why << "negative thickness " << d.minH << " m";
+  initialVolume_ = solver_->diagnostics().volume;
+  if (mode != OutputMode::Resume) {
+    out_->writeText("run.resolved.run", config.echo());
+    return;
   }
-  if (why.str().empty()) return;
-  std::ostringstream o;
-  o << "simulation unstable at t = " << solver_->time() << " s (step " << step << ", dt = " << dt << " s): " << why.str();
-  failure_ = o.str();
-  throw SimulationError(failure_);
+  const std::string path = out_->path("checkpoint.bin");
+  const Checkpoint c = readCheckpoint(path);
+  const Grid& g = scene.dem.grid;
+  if (c.precision != compute::precisionName(ctx_->precision()) || c.nx != g.nx || c.ny != g.ny)
+    throw InputError("checkpoint '" + path + "' was written for a " + std::to_string(c.nx) + "x" +
+                     std::to_string(c.ny) + " grid in " + c.precision + " precision; this run is " +
+                     std::to_string(g.nx) + "x" + std::to_string(g.ny) + " in " +
+                     compute::precisionName(ctx_->precision()));
+  solver_->restoreState(c.state, c.time);
+  steps_ = c.steps;
+  reportIndex_ = c.reportIndex;
+  initialVolume_ = c.initialVolume;
+  totalOutflow_ = c.totalOutflow;
+  wallBefore_ = c.elapsedWall;
+  seriesIndex_ = c.seriesIndex;
+  out_->truncateDiagnostics(kCsvHeader, steps_);
 }
 
-void Simulation::writeReport(int index) {
+void Simulation::writeReport() {
+  const int index = reportIndex_++;
   if (!scene_.reportSeries) return;
   char hName[64], vName[64];
   std::snprintf(hName, sizeof hName, "series/hf_%04d", index);
@@ -82,54 +80,88 @@ void Simulation::writeReport(int index) {
   out_->writeText("series/index.csv", seriesIndex_);
 }
 
+void Simulation::writeCheckpoint(double wallSeconds) {
+  Checkpoint c;
+  c.precision = compute::precisionName(ctx_->precision());
+  c.nx = scene_.dem.grid.nx;
+  c.ny = scene_.dem.grid.ny;
+  c.time = solver_->time();
+  c.steps = steps_;
+  c.reportIndex = reportIndex_;
+  c.initialVolume = initialVolume_;
+  c.totalOutflow = totalOutflow_;
+  c.elapsedWall = wallSeconds;
+  c.seriesIndex = seriesIndex_;
+  c.state = solver_->saveState();
+  sim::writeCheckpoint(out_->path("checkpoint.bin"), c);
+  ++checkpoints_;
+}
+
 RunSummary Simulation::run(const std::function<void(const Progress&)>& onProgress) {
   using Clock = std::chrono::steady_clock;
   const auto start = Clock::now();
-  auto wall = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
-  RunSummary s;
-  s.initialVolume = solver_->diagnostics().volume;
+  auto wall = [&] { return wallBefore_ + std::chrono::duration<double>(Clock::now() - start).count(); };
   const double t0 = scene_.startTime, tEnd = scene_.endTime, interval = scene_.reportInterval;
-  int reportIndex = 0;
-  writeReport(reportIndex++);
-  double nextReport = t0 + interval;
-  try {
-    while (solver_->time() < tEnd * (1 - 1e-15)) {
-      const double t = solver_->time();
-      const double target = std::min(nextReport, tEnd);
-      double dt = solver_->stableDt();
-      if (std::isnan(dt)) checkHealth(s.steps, dt);
-      // Land exactly on report and end times (spec §4: dt clipped to output times).
-      if (!(dt < target - t)) dt = target - t;
-      solver_->step(dt);
-      if (std::fabs(solver_->time() - target) <= 1e-12 * std::max(1.0, std::fabs(target))) solver_->setTime(target);
-      ++s.steps;
-      checkHealth(s.steps, dt);
-      const flow::FlowDiagnostics& d = solver_->diagnostics();
-      s.totalOutflow += d.outflow;
-      const double balance = s.initialVolume > 0 ? (d.volume + s.totalOutflow - s.initialVolume) / s.initialVolume : 0;
-      char line[400];
-      std::snprintf(line, sizeof line, "%lld,%.9g,%.6g,%.12g,%.6g,%.12g,%.3e,%.6g,%.6g,%.4f", s.steps, solver_->time(), dt,
-                    d.volume, d.outflow, s.totalOutflow, balance, kWaterDensity * d.kinetic, d.maxSpeed, wall());
-      out_->appendDiagnostics(kCsvHeader, line);
-      if (solver_->time() >= nextReport * (1 - 1e-15)) {
-        writeReport(reportIndex++);
-        nextReport = t0 + reportIndex * interval;
-      }
-      if (onProgress) onProgress({solver_->time(), t0, tEnd, s.steps, wall(), dt, &d});
-    }
-  } catch (const SimulationError&) {
+  if (steps_ == 0) writeReport();
+  double nextReport = t0 + reportIndex_ * interval;
+  const double ckInterval = scene_.checkpointInterval;
+  double nextCheckpoint = ckInterval > 0 ? t0 + (std::floor((solver_->time() - t0) / ckInterval) + 1) * ckInterval
+                                         : HUGE_VAL;
+  double lastCheckpointWall = wall();
+  RunSummary s;
+  s.initialVolume = initialVolume_;
+  auto finish = [&](bool failed) {
+    s.steps = steps_;
+    s.totalOutflow = totalOutflow_;
     s.wallSeconds = wall();
     s.simulatedSeconds = solver_->time() - t0;
-    writeFinal(s, true);
-    throw;
+    s.finalVolume = solver_->diagnostics().volume;
+    s.cellUpdatesPerSecond = s.wallSeconds > 0 ? static_cast<double>(domainCells_) * s.steps / s.wallSeconds : 0;
+    s.volumeBalanceError =
+        s.initialVolume > 0 ? (s.finalVolume + s.totalOutflow - s.initialVolume) / s.initialVolume : 0.0;
+    s.checkpoints = checkpoints_;
+    writeFinal(s, failed);
+  };
+  while (solver_->time() < tEnd * (1 - 1e-15)) {
+    const double t = solver_->time();
+    // Land exactly on report and end times (spec §4: dt clipped to output times). Checkpoints are
+    // taken at the first step end after they are due, so they never change the time steps.
+    const double target = std::min(nextReport, tEnd);
+    double dt = solver_->stableDt();
+    if (!(dt < target - t)) dt = target - t;
+    solver_->step(dt);
+    if (std::fabs(solver_->time() - target) <= 1e-12 * std::max(1.0, std::fabs(target))) solver_->setTime(target);
+    ++steps_;
+    const std::string problem = health_->check(*solver_, dt);
+    if (!problem.empty()) {
+      std::ostringstream o;
+      o << "simulation unstable at t = " << solver_->time() << " s (step " << steps_ << ", dt = " << dt
+        << " s): " << problem;
+      failure_ = o.str();
+      finish(true);
+      throw SimulationError(failure_);
+    }
+    const flow::FlowDiagnostics& d = solver_->diagnostics();
+    totalOutflow_ += d.outflow;
+    const double balance = initialVolume_ > 0 ? (d.volume + totalOutflow_ - initialVolume_) / initialVolume_ : 0;
+    char line[400];
+    std::snprintf(line, sizeof line, "%lld,%.9g,%.6g,%.12g,%.6g,%.12g,%.3e,%.6g,%.6g,%.4f", steps_, solver_->time(), dt,
+                  d.volume, d.outflow, totalOutflow_, balance, kWaterDensity * d.kinetic, d.maxSpeed, wall());
+    out_->appendDiagnostics(kCsvHeader, line);
+    if (solver_->time() >= nextReport * (1 - 1e-15)) {
+      writeReport();
+      nextReport = t0 + reportIndex_ * interval;
+    }
+    const bool simDue = solver_->time() >= nextCheckpoint * (1 - 1e-15);
+    const bool wallDue = scene_.checkpointWallInterval > 0 && wall() - lastCheckpointWall >= scene_.checkpointWallInterval;
+    if ((simDue || wallDue) && solver_->time() < tEnd * (1 - 1e-15)) {
+      writeCheckpoint(wall());
+      lastCheckpointWall = wall();
+    }
+    while (solver_->time() >= nextCheckpoint * (1 - 1e-15)) nextCheckpoint += ckInterval;
+    if (onProgress) onProgress({solver_->time(), t0, tEnd, steps_, wall(), dt, &d});
   }
-  s.wallSeconds = wall();
-  s.simulatedSeconds = solver_->time() - t0;
-  s.finalVolume = solver_->diagnostics().volume;
-  s.cellUpdatesPerSecond = s.wallSeconds > 0 ? static_cast<double>(domainCells_) * s.steps / s.wallSeconds : 0;
-  s.volumeBalanceError =
-      s.initialVolume > 0 ? (s.finalVolume + s.totalOutflow - s.initialVolume) / s.initialVolume : 0.0;
-  writeFinal(s, false);
+  finish(false);
   return s;
 }
 

@@ -1,5 +1,5 @@
 // The time loop of a run: CFL step clipped to report times, per-step diagnostics and health check,
-// maps at report times, and the final maps, CSV and JSON summary (spec §7-§8).
+// maps at report times, checkpoints, and the final maps, CSV and JSON summary (spec §7-§8).
 #pragma once
 #include <functional>
 #include <memory>
@@ -8,6 +8,7 @@
 #include "compute/Context.hpp"
 #include "flow/FlowSolver.hpp"
 #include "io/RunConfig.hpp"
+#include "sim/HealthCheck.hpp"
 #include "sim/OutputWriter.hpp"
 #include "sim/Scene.hpp"
 
@@ -30,22 +31,34 @@ struct RunSummary {
   double cellUpdatesPerSecond = 0;     ///< domain cells x steps / wall time
   double initialVolume = 0, finalVolume = 0, totalOutflow = 0;
   double volumeBalanceError = 0;       ///< (V_end + outflow - V_0) / V_0
+  int checkpoints = 0;                 ///< checkpoints written by this process
+};
+
+/// How to open the output folder.
+enum class OutputMode {
+  New,        ///< refuse a folder that already holds a run
+  Overwrite,  ///< replace a previous run in the folder
+  Resume      ///< continue the run in the folder from its checkpoint.bin
 };
 
 class Simulation {
  public:
-  /// Opens the device, builds the solver and prepares the output folder.
-  Simulation(const Scene& scene, const io::RunConfig& config, const std::string& outDir, bool overwrite);
-  /// Runs to the end time. Throws SimulationError (after writing what it has) when the state becomes
-  /// unphysical. `onProgress` is called after every step.
+  /// Opens the device, builds the solver and prepares the output folder (outDir empty: the
+  /// scene's). With OutputMode::Resume the state, counters and outputs so far come from the
+  /// folder's checkpoint and the run continues bitwise as if it had never stopped.
+  Simulation(const Scene& scene, const io::RunConfig& config, const std::string& outDir, OutputMode mode);
+  /// Runs to the end time. Throws SimulationError (after writing the maxima so far, the summary
+  /// and keeping the last checkpoint) when the health check fails. `onProgress` runs every step.
   RunSummary run(const std::function<void(const Progress&)>& onProgress = {});
   compute::Context& context() { return *ctx_; }
   flow::FlowSolver& solver() { return *solver_; }
+  /// Simulated time the run starts (or resumes) from [s].
+  double resumeTime() const { return solver_->time(); }
 
  private:
-  void writeReport(int index);
+  void writeReport();
+  void writeCheckpoint(double wallSeconds);
   void writeFinal(const RunSummary& summary, bool failed);
-  void checkHealth(long long step, double dt);
   std::string summaryJson(const RunSummary& s, bool failed) const;
 
   const Scene& scene_;
@@ -53,9 +66,15 @@ class Simulation {
   std::unique_ptr<compute::Context> ctx_;
   std::unique_ptr<flow::FlowSolver> solver_;
   std::unique_ptr<OutputWriter> out_;
+  std::unique_ptr<HealthCheck> health_;
   std::size_t domainCells_ = 0;
   std::string failure_;
+  // Loop bookkeeping (restored on resume).
+  long long steps_ = 0;
+  int reportIndex_ = 0;
+  double initialVolume_ = 0, totalOutflow_ = 0, wallBefore_ = 0;
   std::string seriesIndex_ = "index,time_s,h_file,v_file\n";
+  int checkpoints_ = 0;
 };
 
 }  // namespace talus::sim

@@ -291,7 +291,7 @@ LibRun runScene(const std::string& runFile, long long* progressCalls = nullptr) 
   RunConfig cfg = RunConfig::load(runFile, talusRunKeys());
   talus::sim::Scene scene = talus::sim::loadScene(cfg);
   LibRun r{std::move(cfg), std::move(scene), {}};
-  talus::sim::Simulation sim(r.scene, r.config, "", false);
+  talus::sim::Simulation sim(r.scene, r.config, "", talus::sim::OutputMode::New);
   r.summary = sim.run([&](const talus::sim::Progress&) {
     if (progressCalls) ++*progressCalls;
   });
@@ -513,9 +513,9 @@ TEST_F(Scene, OpenTiltedPlaneRunAndOutputs) {
   expectSameValues(r.config, again);
 
   // An existing run folder is refused without overwrite, accepted with it.
-  expectInputError([&] { talus::sim::Simulation(r.scene, r.config, "", false); }, {out, "--overwrite"});
+  expectInputError([&] { talus::sim::Simulation(r.scene, r.config, "", talus::sim::OutputMode::New); }, {out, "--overwrite"});
   EXPECT_TRUE(fs::is_regular_file(out + "/summary.json")) << "a refused run must not touch the old outputs";
-  EXPECT_NO_THROW(talus::sim::Simulation(r.scene, r.config, "", true));
+  EXPECT_NO_THROW(talus::sim::Simulation(r.scene, r.config, "", talus::sim::OutputMode::Overwrite));
 }
 
 TEST_F(Scene, PCRasterOutputWritesMapFiles) {
@@ -542,7 +542,7 @@ TEST_F(Scene, OutputDirectoryArgumentOverridesRunFile) {
   const std::string runFile = writeRun("DEM=dem.tif\nEnd Time=0.01\nTimestep=60\nReport Series=0\n");
   const RunConfig cfg = RunConfig::load(runFile, talusRunKeys());
   const talus::sim::Scene scene = talus::sim::loadScene(cfg);
-  talus::sim::Simulation sim(scene, cfg, path("elsewhere"), false);
+  talus::sim::Simulation sim(scene, cfg, path("elsewhere"), talus::sim::OutputMode::New);
   const talus::sim::RunSummary s = sim.run();
   // Dry scene: nothing moves, so the run is one step straight to the end time.
   EXPECT_EQ(s.steps, 1);

@@ -1,0 +1,102 @@
+#include "sim/Checkpoint.hpp"
+
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+
+#include <unistd.h>
+
+#include "core/Error.hpp"
+
+namespace talus::sim {
+namespace {
+
+constexpr char kMagic[8] = {'T', 'A', 'L', 'U', 'S', 'C', 'K', '1'};
+
+template <class T>
+void put(std::ofstream& o, const T& v) {
+  o.write(reinterpret_cast<const char*>(&v), sizeof v);
+}
+void putString(std::ofstream& o, const std::string& s) {
+  put<uint64_t>(o, s.size());
+  o.write(s.data(), static_cast<std::streamsize>(s.size()));
+}
+
+struct Reader {
+  std::ifstream in;
+  std::string path;
+  template <class T>
+  T get() {
+    T v{};
+    if (!in.read(reinterpret_cast<char*>(&v), sizeof v)) fail();
+    return v;
+  }
+  std::string getString(uint64_t limit) {
+    const uint64_t n = get<uint64_t>();
+    if (n > limit) fail();
+    std::string s(n, '\0');
+    if (n && !in.read(s.data(), static_cast<std::streamsize>(n))) fail();
+    return s;
+  }
+  [[noreturn]] void fail() { throw InputError("checkpoint '" + path + "' is truncated or corrupt"); }
+};
+
+}  // namespace
+
+void writeCheckpoint(const std::string& path, const Checkpoint& c) {
+  const std::string tmp = path + ".tmp-" + std::to_string(::getpid());
+  {
+    std::ofstream o(tmp, std::ios::binary | std::ios::trunc);
+    if (!o) throw InputError("cannot write checkpoint '" + tmp + "'");
+    o.write(kMagic, sizeof kMagic);
+    putString(o, c.precision);
+    put(o, c.nx);
+    put(o, c.ny);
+    put(o, c.time);
+    put(o, c.steps);
+    put(o, c.reportIndex);
+    put(o, c.initialVolume);
+    put(o, c.totalOutflow);
+    put(o, c.elapsedWall);
+    putString(o, c.seriesIndex);
+    putString(o, std::string(c.state.begin(), c.state.end()));
+    o.write(kMagic, sizeof kMagic);  // trailer: a complete file ends with the magic again
+    o.flush();
+    if (!o) {
+      std::error_code ec;
+      std::filesystem::remove(tmp, ec);
+      throw InputError("cannot write checkpoint '" + tmp + "'");
+    }
+  }
+  std::error_code ec;
+  std::filesystem::rename(tmp, path, ec);
+  if (ec) {
+    std::filesystem::remove(tmp, ec);
+    throw InputError("cannot write checkpoint '" + path + "': " + ec.message());
+  }
+}
+
+Checkpoint readCheckpoint(const std::string& path) {
+  Reader r{std::ifstream(path, std::ios::binary), path};
+  if (!r.in) throw InputError("no checkpoint '" + path + "' (was the run started with a checkpoint interval?)");
+  char magic[8];
+  if (!r.in.read(magic, sizeof magic) || std::memcmp(magic, kMagic, sizeof magic) != 0)
+    throw InputError("'" + path + "' is not a Talus checkpoint");
+  Checkpoint c;
+  c.precision = r.getString(16);
+  c.nx = r.get<int32_t>();
+  c.ny = r.get<int32_t>();
+  c.time = r.get<double>();
+  c.steps = r.get<int64_t>();
+  c.reportIndex = r.get<int32_t>();
+  c.initialVolume = r.get<double>();
+  c.totalOutflow = r.get<double>();
+  c.elapsedWall = r.get<double>();
+  c.seriesIndex = r.getString(1ull << 30);
+  const std::string state = r.getString(1ull << 40);
+  c.state.assign(state.begin(), state.end());
+  if (!r.in.read(magic, sizeof magic) || std::memcmp(magic, kMagic, sizeof magic) != 0) r.fail();
+  return c;
+}
+
+}  // namespace talus::sim
