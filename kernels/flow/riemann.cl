@@ -18,27 +18,23 @@ typedef struct {
   real fh, fqn, fqt, p;
 } FaceFlux;
 
-/// HLL/HLLC flux between left state (hl, ul, vl) and right state (hr, ur, vr), u normal, v tangential.
-/// g sets the wave speeds (Toro 2001 two-rarefaction estimates with the dry-bed speeds).
-inline FaceFlux riemann_flux(real hl, real ul, real vl, real hr, real ur, real vr, real g) {
-  FaceFlux f = {0, 0, 0, 0};
-  if (hl <= (real)0 && hr <= (real)0) return f;
-  const real cl = sqrt(g * hl), cr = sqrt(g * hr);
-  real sl, sr;
-  if (hl <= (real)0) {
-    sl = ur - (real)2 * cr;
-    sr = ur + cr;
-  } else if (hr <= (real)0) {
-    sl = ul - cl;
-    sr = ul + (real)2 * cl;
-  } else {
-    const real us = (real)0.5 * (ul + ur) + cl - cr;
-    const real cs = (real)0.5 * (cl + cr) + (real)0.25 * (ul - ur);
-    sl = fmin(ul - cl, us - cs);
-    sr = fmax(ur + cr, us + cs);
-  }
+/// Wave-speed estimates of Toro (2001) for a shallow-water-type system with sound speeds cl, cr:
+/// two-rarefaction estimates where both sides are wet, the dry-bed speeds u -+ 2c otherwise.
+inline real2 wave_speeds(real hl, real ul, real cl, real hr, real ur, real cr) {
+  if (hl <= (real)0) return (real2)(ur - (real)2 * cr, ur + cr);
+  if (hr <= (real)0) return (real2)(ul - cl, ul + (real)2 * cl);
+  const real us = (real)0.5 * (ul + ur) + cl - cr;
+  const real cs = (real)0.5 * (cl + cr) + (real)0.25 * (ul - ur);
+  return (real2)(fmin(ul - cl, us - cs), fmax(ur + cr, us + cs));
+}
+
+/// HLL flux (Harten, Lax & van Leer 1983) of mass, normal momentum and pressure between the left
+/// state (hl, ul, vl, pressure pl) and the right state (hr, ur, vr, pr), with wave speeds s = (sl, sr);
+/// the tangential momentum is upwinded across the contact wave (HLLC, Toro 2001) or HLL-averaged.
+inline FaceFlux hll_core(real hl, real ul, real vl, real pl, real hr, real ur, real vr, real pr, real2 s) {
+  FaceFlux f;
+  const real sl = s.x, sr = s.y;
   const real ql = hl * ul, qr = hr * ur;
-  const real pl = (real)0.5 * hl * hl, pr = (real)0.5 * hr * hr;
   if (sl >= (real)0) {
     f.fh = ql;
     f.fqn = ql * ul;
@@ -66,6 +62,17 @@ inline FaceFlux riemann_flux(real hl, real ul, real vl, real hr, real ur, real v
   f.fqt = (sr * ql * vl - sl * qr * vr + sl * sr * (hr * vr - hl * vl)) * inv;
 #endif
   return f;
+}
+
+/// Shallow-water HLL/HLLC flux between (hl, ul, vl) and (hr, ur, vr), u normal, v tangential; g sets
+/// the wave speeds; the pressure part is h^2/2 (the cell multiplies it by its own g_p).
+inline FaceFlux riemann_flux(real hl, real ul, real vl, real hr, real ur, real vr, real g) {
+  if (hl <= (real)0 && hr <= (real)0) {
+    FaceFlux f = {0, 0, 0, 0};
+    return f;
+  }
+  const real2 s = wave_speeds(hl, ul, sqrt(g * hl), hr, ur, sqrt(g * hr));
+  return hll_core(hl, ul, vl, (real)0.5 * hl * hl, hr, ur, vr, (real)0.5 * hr * hr, s);
 }
 
 /// Face value of one side: thickness, free surface, normal and tangential velocity, and g_p of its cell.
