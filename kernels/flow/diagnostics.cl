@@ -15,20 +15,47 @@
 #define DIAG_OUTFLOW 2
 #define DIAG_KINETIC 3
 #define DIAG_MIN_H 4
-#define DIAG_COUNT 5
+#define DIAG_VOLUME_S 5   // two-phase only: solid volume
+#define DIAG_OUTFLOW_S 6  // two-phase only: solid outflow
+#define DIAG_MAX_ROWS 7
+#define TILE_CELLS (TILE * TILE)
+
+/// Reduces `rows` values per work-item (row r in s[r * TILE_CELLS + lid]; row DIAG_SPEED by max with
+/// NaN propagation, DIAG_MIN_H by min, the others by sum) and the wet flags, then work-item 0 writes
+/// the tile's partials at its slot in the active list and its wet flag.
+inline void reduce_tile(__local real* s, __local int* s_wet, int rows, int lid, int slot, int ntiles,
+                        __global real* partial, __global int* tile_wet, int tile) {
+  barrier(CLK_LOCAL_MEM_FENCE);
+  for (int step = TILE_CELLS / 2; step > 0; step >>= 1) {
+    if (lid < step) {
+      for (int r = 0; r < rows; ++r) {
+        const real x = s[r * TILE_CELLS + lid], y = s[r * TILE_CELLS + lid + step];
+        real v;
+        if (r == DIAG_SPEED) v = (isnan(x) || isnan(y)) ? NAN : fmax(x, y);
+        else if (r == DIAG_MIN_H) v = fmin(x, y);
+        else v = x + y;
+        s[r * TILE_CELLS + lid] = v;
+      }
+      s_wet[lid] |= s_wet[lid + step];
+    }
+    barrier(CLK_LOCAL_MEM_FENCE);
+  }
+  if (lid == 0) {
+    for (int r = 0; r < rows; ++r) partial[r * ntiles + slot] = s[r * TILE_CELLS];
+    tile_wet[tile] = s_wet[0];
+  }
+}
 
 __kernel __attribute__((reqd_work_group_size(TILE, TILE, 1)))
 void flow_tile_diagnostics(__constant const FlowParams* p, __global const uchar* mask, __global const int* tile_list,
                            __global const real* h, __global const real* qx, __global const real* qy,
                            __global const real* gp, __global const real* out_step, __global real* partial,
                            __global int* tile_wet) {
-  __local real s_speed[TILE * TILE], s_vol[TILE * TILE], s_out[TILE * TILE], s_ke[TILE * TILE], s_min[TILE * TILE];
-  __local int s_wet[TILE * TILE];
+  __local real s[5 * TILE_CELLS];
+  __local int s_wet[TILE_CELLS];
   const int2 c = tile_cell(p, tile_list);
   const int i = c.x, j = c.y;
   const int lid = get_local_id(1) * TILE + get_local_id(0);
-  const int slot = get_group_id(0);
-  const int ntiles = p->tiles_x * p->tiles_y;
   real speed = 0, vol = 0, out = 0, ke = 0, hmin = REAL_MAX;
   int wet = 0;
   if (i < p->nx && j < p->ny && cell_inside(p, mask, i, j)) {
@@ -45,28 +72,14 @@ void flow_tile_diagnostics(__constant const FlowParams* p, __global const uchar*
     wet = hk > (real)0 || isnan(hk);
     if (isnan(hk) || isnan(qx[k]) || isnan(qy[k])) speed = NAN;
   }
-  s_speed[lid] = speed; s_vol[lid] = vol; s_out[lid] = out; s_ke[lid] = ke; s_min[lid] = hmin; s_wet[lid] = wet;
-  barrier(CLK_LOCAL_MEM_FENCE);
-  for (int s = TILE * TILE / 2; s > 0; s >>= 1) {
-    if (lid < s) {
-      const real a = s_speed[lid], b = s_speed[lid + s];
-      s_speed[lid] = (isnan(a) || isnan(b)) ? NAN : fmax(a, b);
-      s_vol[lid] += s_vol[lid + s];
-      s_out[lid] += s_out[lid + s];
-      s_ke[lid] += s_ke[lid + s];
-      s_min[lid] = fmin(s_min[lid], s_min[lid + s]);
-      s_wet[lid] |= s_wet[lid + s];
-    }
-    barrier(CLK_LOCAL_MEM_FENCE);
-  }
-  if (lid == 0) {
-    partial[DIAG_SPEED * ntiles + slot] = s_speed[0];
-    partial[DIAG_VOLUME * ntiles + slot] = s_vol[0];
-    partial[DIAG_OUTFLOW * ntiles + slot] = s_out[0];
-    partial[DIAG_KINETIC * ntiles + slot] = s_ke[0];
-    partial[DIAG_MIN_H * ntiles + slot] = s_min[0];
-    tile_wet[tile_list[slot]] = s_wet[0];
-  }
+  s[DIAG_SPEED * TILE_CELLS + lid] = speed;
+  s[DIAG_VOLUME * TILE_CELLS + lid] = vol;
+  s[DIAG_OUTFLOW * TILE_CELLS + lid] = out;
+  s[DIAG_KINETIC * TILE_CELLS + lid] = ke;
+  s[DIAG_MIN_H * TILE_CELLS + lid] = hmin;
+  s_wet[lid] = wet;
+  reduce_tile(s, s_wet, 5, lid, get_group_id(0), p->tiles_x * p->tiles_y, partial, tile_wet,
+              tile_list[get_group_id(0)]);
 }
 
 #define COMPACT_GROUP 256

@@ -30,4 +30,17 @@ DepthPressure parseDepthPressure(const std::string& name) {
   throw InputError("depth pressure '" + name + "' is not one of: cos2, cos4");
 }
 
+EarthPressure parseEarthPressure(const std::string& name) {
+  if (name == "savage-hutter") return EarthPressure::SavageHutter;
+  if (name == "constant") return EarthPressure::Constant;
+  throw InputError("earth pressure '" + name + "' is not one of: savage-hutter, constant");
+}
+
+DragLaw parseDragLaw(const std::string& name) {
+  if (name == "off") return DragLaw::Off;
+  if (name == "linear") return DragLaw::Linear;
+  if (name == "quadratic") return DragLaw::Quadratic;
+  throw InputError("drag law '" + name + "' is not one of: off, linear, quadratic");
+}
+
 }  // namespace talus::flow

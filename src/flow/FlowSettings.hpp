@@ -10,6 +10,26 @@ enum class RiemannSolver { HLL = 0, HLLC = 1 };
 enum class Boundary { Wall = 0, Open = 1 };
 enum class DepthPressure { Cos2, Cos4 };
 
+enum class EarthPressure { SavageHutter = 0, Constant = 1 };
+enum class DragLaw { Off = 0, Linear = 1, Quadratic = 2 };
+
+/// Options of the two-phase (solids + fluid) grid model, spec §4.
+struct DebrisSettings {
+  EarthPressure earthPressure = EarthPressure::SavageHutter;
+  double kConst = 1.0;           ///< earth-pressure coefficient when constant
+  double fluidDensity = 1000.0;  ///< rho_f [kg/m^3]
+  double poreB = 1.0;            ///< basal pore-pressure factor B (P.39)
+  DragLaw drag = DragLaw::Linear;
+  double dragMultiplier = 1.0;
+  double dragPExponent = 1.0;    ///< m in P = alpha_s^m
+  double dragM = 2.4;            ///< M in G = alpha_f^(M-1)
+  double dragKappa = 10.0;       ///< K of the smoothing function S_p [m/s]
+  double viscA = 0.001;          ///< O'Brien-Julien a [Pa s]
+  double viscB = 10.0;           ///< O'Brien-Julien b [-]
+  bool virtualMass = true;
+  bool deltaFromPhi = true;      ///< bed friction angle = internal friction angle
+};
+
 struct FlowSettings {
   Limiter limiter = Limiter::VanLeer;
   RiemannSolver riemann = RiemannSolver::HLLC;
@@ -21,11 +41,15 @@ struct FlowSettings {
   bool skipDryTiles = true;         ///< skip tiles with no water within one tile
   bool slopeCorrection = true;      ///< g_n = g cos^2(theta) (spec §1); off: g everywhere
   DepthPressure depthPressure = DepthPressure::Cos2;  ///< g_p = g cos^2 (default) or g cos^4
+  bool twoPhase = false;            ///< solids on the grid (grid mode of spec §3); false: water only
+  DebrisSettings debris;
 };
 
 Limiter parseLimiter(const std::string& name);
 RiemannSolver parseRiemann(const std::string& name);
 Boundary parseBoundary(const std::string& name);
 DepthPressure parseDepthPressure(const std::string& name);
+EarthPressure parseEarthPressure(const std::string& name);
+DragLaw parseDragLaw(const std::string& name);
 
 }  // namespace talus::flow

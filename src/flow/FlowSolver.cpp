@@ -13,7 +13,7 @@
 namespace talus::flow {
 namespace {
 
-constexpr int kDiagnosticRows = 5;     // see kernels/flow/diagnostics.cl
+constexpr int kDiagnosticRows = 7;     // see kernels/flow/diagnostics.cl (5 single-phase, 7 two-phase)
 const compute::Range kLocal2D{kTile, kTile};
 
 std::string buildOptions(const FlowSettings& s) {
@@ -61,7 +61,7 @@ FlowSolver::FlowSolver(compute::Context& ctx, const Grid& grid, const FlowSettin
       h1_(ctx, grid.cells(), "h stage"),
       qx1_(ctx, grid.cells(), "qx stage"),
       qy1_(ctx, grid.cells(), "qy stage"),
-      outStep_(ctx, grid.cells(), "outflow per step"),
+      outStep_(ctx, (settings.twoPhase ? 2 : 1) * grid.cells(), "outflow per step"),
       partial_(ctx, kDiagnosticRows * static_cast<std::size_t>(tilesX_) * tilesY_, "tile partials"),
       hMax_(ctx, grid.cells(), "h max"),
       vMax_(ctx, grid.cells(), "v max"),
@@ -80,6 +80,7 @@ FlowSolver::FlowSolver(compute::Context& ctx, const Grid& grid, const FlowSettin
   else
     writeParams<float>(params_, grid, tilesX_, tilesY_, settings);
   outStep_.fill(0.0);
+  if (settings.twoPhase) buildDebris();
 }
 
 void FlowSolver::setInput(const FlowInput& in, double startTime) {
@@ -123,6 +124,7 @@ void FlowSolver::setInput(const FlowInput& in, double startTime) {
   hMax_.upload(h);
   vMax_.fill(0.0);
   arrival_.fill(-1.0);
+  if (settings_.twoPhase) setDebrisInput(in, h);
   time_ = startTime;
   // Every tile runs the first diagnostics, which finds the wet tiles.
   std::vector<int> all(static_cast<std::size_t>(tilesX_) * tilesY_);
@@ -143,9 +145,14 @@ double FlowSolver::stableDt() const {
 
 void FlowSolver::step(double dt) {
   if (!(dt > 0) || !std::isfinite(dt)) throw SimulationError("flow step with invalid dt " + std::to_string(dt));
-  enqueueStage(h_, qx_, qy_, h1_, qx1_, qy1_, dt, 0.0, true);
-  enqueueStage(h1_, qx1_, qy1_, h_, qx_, qy_, dt, 0.5, false);
-  if (hasFriction_) enqueueFriction(dt);
+  if (settings_.twoPhase) {
+    enqueueDebrisStage(true, dt);
+    enqueueDebrisStage(false, dt);
+  } else {
+    enqueueStage(h_, qx_, qy_, h1_, qx1_, qy1_, dt, 0.0, true);
+    enqueueStage(h1_, qx1_, qy1_, h_, qx_, qy_, dt, 0.5, false);
+    if (hasFriction_) enqueueFriction(dt);
+  }
   time_ += dt;
   enqueueTrackMaxima();
   computeDiagnostics();
@@ -168,6 +175,10 @@ void FlowSolver::enqueueFriction(double dt) {
 }
 
 void FlowSolver::enqueueTrackMaxima() {
+  if (settings_.twoPhase) {
+    enqueueDebrisTrack();
+    return;
+  }
   track_.bind(params_, mask_, tileList_, h_, qx_, qy_, hMax_, vMax_, arrival_, compute::RealArg{time_});
   track_.launch(tileRange(), kLocal2D);
 }
@@ -176,12 +187,17 @@ void FlowSolver::computeDiagnostics() {
   const std::size_t ntiles = static_cast<std::size_t>(tilesX_) * tilesY_;
   using compute::ReduceOp;
   if (activeTiles_ > 0) {
-    diagnostics_.bind(params_, mask_, tileList_, h_, qx_, qy_, gp_, outStep_, partial_, tileWet_);
-    diagnostics_.launch(tileRange(), kLocal2D);
-    const std::vector<double> r = reducer_.reduceRows(
-        partial_, static_cast<std::size_t>(activeTiles_),
-        {ReduceOp::Max, ReduceOp::Sum, ReduceOp::Sum, ReduceOp::Sum, ReduceOp::Min}, ntiles);
-    diag_ = {r[0], r[1], r[2], r[3], r[4]};
+    std::vector<ReduceOp> ops = {ReduceOp::Max, ReduceOp::Sum, ReduceOp::Sum, ReduceOp::Sum, ReduceOp::Min};
+    if (settings_.twoPhase) {
+      enqueueDebrisDiagnostics();
+      ops.push_back(ReduceOp::Sum);
+      ops.push_back(ReduceOp::Sum);
+    } else {
+      diagnostics_.bind(params_, mask_, tileList_, h_, qx_, qy_, gp_, outStep_, partial_, tileWet_);
+      diagnostics_.launch(tileRange(), kLocal2D);
+    }
+    const std::vector<double> r = reducer_.reduceRows(partial_, static_cast<std::size_t>(activeTiles_), ops, ntiles);
+    diag_ = {r[0], r[1], r[2], r[3], r[4], settings_.twoPhase ? r[5] : 0.0, settings_.twoPhase ? r[6] : 0.0};
   } else {
     diag_ = {};
   }
@@ -192,20 +208,32 @@ void FlowSolver::computeDiagnostics() {
 }
 
 std::vector<char> FlowSolver::saveState() const {
-  const compute::RealBuffer* fields[] = {&h_, &qx_, &qy_, &hMax_, &vMax_, &arrival_};
-  const std::size_t each = fields[0]->raw().bytes();
-  std::vector<char> bytes(each * 6);
-  for (int f = 0; f < 6; ++f) fields[f]->raw().readBytes(bytes.data() + f * each, each);
+  std::vector<const compute::RawBuffer*> fields = {&h_.raw(), &qx_.raw(), &qy_.raw(), &hMax_.raw(), &vMax_.raw(),
+                                                   &arrival_.raw()};
+  if (settings_.twoPhase) fields.insert(fields.end(), {&solid0_.raw(), &maxima_.raw(), &lock0_.raw()});
+  std::vector<char> bytes;
+  for (const compute::RawBuffer* f : fields) {
+    const std::size_t at = bytes.size();
+    bytes.resize(at + f->bytes());
+    f->readBytes(bytes.data() + at, f->bytes());
+  }
   return bytes;
 }
 
 void FlowSolver::restoreState(const std::vector<char>& bytes, double time) {
-  compute::RealBuffer* fields[] = {&h_, &qx_, &qy_, &hMax_, &vMax_, &arrival_};
-  const std::size_t each = fields[0]->raw().bytes();
-  if (bytes.size() != each * 6)
-    throw InputError("checkpoint state has " + std::to_string(bytes.size()) + " bytes, this grid and precision need " +
-                     std::to_string(each * 6));
-  for (int f = 0; f < 6; ++f) fields[f]->raw().writeBytes(bytes.data() + f * each, each);
+  std::vector<compute::RawBuffer*> fields = {&h_.raw(), &qx_.raw(), &qy_.raw(), &hMax_.raw(), &vMax_.raw(),
+                                             &arrival_.raw()};
+  if (settings_.twoPhase) fields.insert(fields.end(), {&solid0_.raw(), &maxima_.raw(), &lock0_.raw()});
+  std::size_t total = 0;
+  for (const compute::RawBuffer* f : fields) total += f->bytes();
+  if (bytes.size() != total)
+    throw InputError("checkpoint state has " + std::to_string(bytes.size()) +
+                     " bytes, this grid, model and precision need " + std::to_string(total));
+  std::size_t at = 0;
+  for (compute::RawBuffer* f : fields) {
+    f->writeBytes(bytes.data() + at, f->bytes());
+    at += f->bytes();
+  }
   time_ = time;
   // Diagnostics and the active tiles follow from the state alone: recompute them over every tile.
   std::vector<int> all(static_cast<std::size_t>(tilesX_) * tilesY_);

@@ -21,8 +21,16 @@ struct FlowInput {
   std::vector<uint8_t> mask;    ///< 1 inside the domain, 0 nodata
   std::vector<double> bed;      ///< b [m]
   std::vector<double> manning;  ///< n [s m^-1/3]
-  std::vector<double> h;        ///< vertical thickness [m]
-  std::vector<double> qx, qy;   ///< discharge per unit width [m^2/s] (empty: at rest)
+  std::vector<double> h;        ///< vertical fluid thickness [m]
+  std::vector<double> qx, qy;   ///< fluid discharge per unit width [m^2/s] (empty: at rest)
+  // Two-phase model only (FlowSettings::twoPhase); empty vectors mean zero / defaults.
+  std::vector<double> hs;          ///< vertical solid thickness alpha_s H [m]
+  std::vector<double> qsx, qsy;    ///< solid discharge [m^2/s] (empty: at rest)
+  std::vector<double> phi;         ///< internal friction angle [rad]
+  std::vector<double> rhoS;        ///< solid density [kg/m^3]
+  std::vector<double> grain;       ///< grain size [m]
+  std::vector<double> delta;       ///< bed friction angle [rad] (used unless DebrisSettings::deltaFromPhi)
+  std::vector<double> cohesion;    ///< cohesion [Pa] (Bell's reduction of the lateral pressure)
 };
 
 /// Reduced quantities after the last step (or after setInput).
@@ -32,6 +40,13 @@ struct FlowDiagnostics {
   double outflow = 0;    ///< volume that left through boundary faces in the last step [m^3]
   double kinetic = 0;    ///< kinetic energy per unit density, sum h |u|^2 / 2 dx^2 [m^5/s^2]
   double minH = 0;       ///< smallest thickness inside the domain (active tiles) [m]
+  double volumeSolid = 0;   ///< two-phase: solid volume [m^3]
+  double outflowSolid = 0;  ///< two-phase: solid volume out in the last step [m^3]
+};
+
+/// Running maxima of the two-phase model (spec §8).
+struct DebrisMaxima {
+  std::vector<double> hf, vf, hs, vs, h, solidFraction, impactPressure;
 };
 
 class FlowSolver {
@@ -61,6 +76,14 @@ class FlowSolver {
   std::vector<double> hMax() const { return hMax_.download(); }
   std::vector<double> vMax() const { return vMax_.download(); }
   std::vector<double> arrival() const { return arrival_.download(); }
+  bool twoPhase() const { return settings_.twoPhase; }
+  /// Two-phase only: solid thickness and discharge, the transported friction angle, density, grain
+  /// size (per cell, defaults where no solids are), and the maxima.
+  std::vector<double> hs() const;
+  std::vector<double> qsx() const;
+  std::vector<double> qsy() const;
+  std::vector<double> solidScalar(int which) const;  ///< 0 phi, 1 rho_s, 2 grain size
+  DebrisMaxima debrisMaxima() const;
   /// The evolving state as the device holds it (h, qx, qy, maxima, arrival; raw bytes of the run's
   /// precision) and the time, for checkpoints. restoreState() after setInput() of the same scene
   /// continues bitwise as if the run had not stopped.
@@ -76,6 +99,13 @@ class FlowSolver {
   void enqueueFriction(double dt);
   void enqueueTrackMaxima();
   void computeDiagnostics();
+  // Two-phase model (FlowSolverDebris.cpp).
+  void buildDebris();
+  void setDebrisInput(const FlowInput& in, const std::vector<double>& h);
+  void enqueueDebrisStage(bool first, double dt);
+  void enqueueDebrisTrack();
+  void enqueueDebrisDiagnostics();
+  std::vector<double> solidComponent(int c) const;
 
   compute::Context& ctx_;
   Grid grid_;
@@ -94,6 +124,12 @@ class FlowSolver {
   compute::RealBuffer outStep_, partial_;
   compute::RealBuffer hMax_, vMax_, arrival_;
   compute::Reducer reducer_;
+  // Two-phase model: solid state (6 components, see kernels/flow/debris_stage.cl) at the start of
+  // the step and after stage 1, static-solid flags, static maps, maxima.
+  compute::RawBuffer debrisParams_;
+  compute::RealBuffer solid0_, solid1_, delta_, cohesion_, maxima_;
+  compute::Buffer<uint8_t> lock0_, lock1_;
+  compute::Kernel debrisStage_, debrisTrack_, debrisDiagnostics_;
   compute::Kernel stage_, friction_, track_, diagnostics_, compact_;
   /// Global range covering the active tiles: one work-group of kTile x kTile per tile.
   compute::Range tileRange() const;

@@ -1,0 +1,84 @@
+// Closures of the two-phase debris-flow model (spec §4; Pudasaini 2012, JGR 117 F03010): the
+// Savage-Hutter earth-pressure coefficient, the O'Brien-Julien viscosity, the settling velocity and
+// the generalised drag coefficient, and the parameter block of the two-phase kernels (mirrored by
+// src/flow/DebrisParams.hpp).
+#ifndef TALUS_DEBRIS_CLOSURES_CL
+#define TALUS_DEBRIS_CLOSURES_CL
+#include "flow/flow_common.cl"
+
+#define EARTH_SAVAGE_HUTTER 0
+#define EARTH_CONSTANT 1
+#define DRAG_OFF 0
+#define DRAG_LINEAR 1
+#define DRAG_QUADRATIC 2
+
+typedef struct {
+  int earth_pressure;  // EARTH_SAVAGE_HUTTER or EARTH_CONSTANT
+  int drag_law;        // DRAG_OFF, DRAG_LINEAR (j = 1), DRAG_QUADRATIC (j = 2)
+  int virtual_mass;    // 1: virtual mass in the phase exchange
+  int delta_from_phi;  // 1: bed friction angle = internal friction angle of the cell
+  real k_const;        // constant earth-pressure coefficient
+  real rho_f;          // fluid density [kg/m^3]
+  real pore_b;         // basal pore-pressure factor B (scales buoyancy in the basal normal stress)
+  real drag_mult;      // multiplier of the drag coefficient
+  real drag_m;         // P = alpha_s^m
+  real drag_M;         // G = alpha_f^(M - 1)
+  real drag_kappa;     // K in the smoothing function S_p [m/s]
+  real visc_a;         // O'Brien-Julien eta = a exp(b alpha_s) [Pa s]
+  real visc_b;         // [-]
+  real phi_default;    // internal friction angle where no solids are [rad]
+  real rho_s_default;  // solid density where no solids are [kg/m^3]
+  real d_default;      // grain size where no solids are [m]
+} DebrisParams;
+
+/// Savage & Hutter (1989) earth-pressure coefficient: K = 2/cos^2(phi) (1 -+ sqrt(1 - cos^2(phi) /
+/// cos^2(delta))) - 1, active (-, the flow extends) or passive (+, it contracts); the root's argument
+/// is clipped at zero when delta > phi.
+inline real earth_pressure(real phi, real delta, int passive) {
+  const real cp = cos(phi), cd = cos(delta);
+  const real root = sqrt(fmax((real)0, (real)1 - cp * cp / (cd * cd)));
+  return (real)2 / (cp * cp) * ((real)1 + (passive ? root : -root)) - (real)1;
+}
+
+/// O'Brien & Julien (1985) dynamic viscosity of the fluid phase carrying solids (OpenLISEM P.72).
+inline real obrien_julien(__constant const DebrisParams* dp, real alpha_s) {
+  return dp->visc_a * exp(dp->visc_b * alpha_s);
+}
+
+/// Settling velocity of a grain of size d (OpenLISEM Hazard P.73): Stokes below 100 um, Zanke
+/// (1977) above 1 mm, U = 10 nu/d (sqrt(1 + 0.01 (rho_s - rho_f)/rho_f g d^3 / nu^2) - 1), and a
+/// linear blend in between.
+inline real settling_velocity(real d, real rho_s, real rho_f, real eta) {
+  const real dd = fmax(d, (real)1e-7);
+  const real nu = eta / rho_f;
+  const real rel = fmax(rho_s - rho_f, (real)0) / rho_f;
+  const real stokes = rel * GRAVITY * dd * dd / ((real)18 * nu);
+  const real zanke = (real)10 * nu / dd * (sqrt((real)1 + (real)0.01 * rel * GRAVITY * dd * dd * dd / (nu * nu)) - (real)1);
+  if (dd <= (real)1e-4) return stokes;
+  if (dd >= (real)1e-3) return zanke;
+  const real w = (dd - (real)1e-4) / (real)9e-4;
+  return ((real)1 - w) * stokes + w * zanke;
+}
+
+/// Drag coefficient C of Pudasaini (2012, eqs. 11-15; OpenLISEM Hazard P.31-P.34) in
+/// dq_s/dt = H C (u_f - u_s) |u_f - u_s|^(j-1) [1/s for j = 1, 1/m for j = 2]:
+/// C = alpha_s alpha_f (1 - gamma) g / [U_T (P F + (1 - P) G) + S_p]^j,
+/// F = gamma/180 (alpha_f/alpha_s)^3 Re_p, G = alpha_f^(M-1), P = alpha_s^m, Re_p = rho_f d U_T / eta,
+/// S_p = (P/alpha_s + (1 - P)/alpha_f) K.
+inline real drag_coefficient(__constant const DebrisParams* dp, real alpha_s, real rho_s, real d) {
+  const real as = clamp(alpha_s, (real)1e-6, (real)1 - (real)1e-6), af = (real)1 - as;
+  const real gamma = dp->rho_f / rho_s;
+  const real eta = obrien_julien(dp, as);
+  const real ut = settling_velocity(d, rho_s, dp->rho_f, eta);
+  const real rep = dp->rho_f * d * ut / eta;
+  const real ratio = af / as;
+  const real F = gamma / (real)180 * ratio * ratio * ratio * rep;
+  const real G = pow(af, dp->drag_M - (real)1);
+  const real P = pow(as, dp->drag_m);
+  const real sp = (P / as + ((real)1 - P) / af) * dp->drag_kappa;
+  real denom = ut * (P * F + ((real)1 - P) * G) + sp;
+  if (dp->drag_law == DRAG_QUADRATIC) denom *= denom;
+  return dp->drag_mult * as * af * ((real)1 - gamma) * GRAVITY / denom;
+}
+
+#endif

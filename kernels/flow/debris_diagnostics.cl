@@ -1,0 +1,82 @@
+// Diagnostics and running maxima of the two-phase model (spec §8), one work-group per active tile:
+// CFL speed max over cells of max(|u_s| + |v_s|, |u_f| + |v_f|) + 2 sqrt(g_p H max(1, K_passive)),
+// volumes and outflow of each phase, kinetic energy (J, both phases), smallest thickness; and per
+// cell the maxima of each phase's thickness and speed, of the total thickness, the solid fraction
+// and the impact pressure rho_m |u_m|^2 of the mixture, and the arrival time of the mixture.
+#include "flow/diagnostics.cl"
+#include "flow/debris_closures.cl"
+
+__kernel __attribute__((reqd_work_group_size(TILE, TILE, 1)))
+void debris_tile_diagnostics(__constant const FlowParams* p, __constant const DebrisParams* dp,
+                             __global const uchar* mask, __global const int* tile_list, __global const real* S,
+                             __global const real* hf, __global const real* qfx, __global const real* qfy,
+                             __global const real* gp, __global const real* delta, __global const real* out_step,
+                             __global real* partial, __global int* tile_wet) {
+  __local real s[DIAG_MAX_ROWS * TILE_CELLS];
+  __local int s_wet[TILE_CELLS];
+  const int2 c = tile_cell(p, tile_list);
+  const int i = c.x, j = c.y;
+  const int lid = get_local_id(1) * TILE + get_local_id(0);
+  const int n = p->nx * p->ny;
+  real speed = 0, volf = 0, outf = 0, ke = 0, hmin = REAL_MAX, vols = 0, outs = 0;
+  int wet = 0;
+  if (i < p->nx && j < p->ny && cell_inside(p, mask, i, j)) {
+    const int k = cell_index(p, i, j);
+    const real hs = S[k], h = hf[k], H = fmax(hs, (real)0) + fmax(h, (real)0);
+    const real us = velocity(hs, S[n + k], p->h_dry), vs = velocity(hs, S[2 * n + k], p->h_dry);
+    const real uf = velocity(h, qfx[k], p->h_dry), vf = velocity(h, qfy[k], p->h_dry);
+    const real rho_s = hs > p->h_dry ? S[4 * n + k] / hs : dp->rho_s_default;
+    const real phi = hs > p->h_dry ? S[3 * n + k] / hs : dp->phi_default;
+    const real K = dp->earth_pressure == EARTH_CONSTANT ? dp->k_const
+                                                        : earth_pressure(phi, dp->delta_from_phi ? phi : delta[k], 1);
+    const real area = p->dx * p->dx;
+    speed = H > (real)0 ? fmax(fabs(us) + fabs(vs), fabs(uf) + fabs(vf)) + (real)2 * sqrt(gp[k] * H * fmax((real)1, K))
+                        : (real)0;
+    volf = h * area;
+    vols = hs * area;
+    outf = out_step[k];
+    outs = out_step[n + k];
+    ke = (real)0.5 * (rho_s * hs * (us * us + vs * vs) + dp->rho_f * h * (uf * uf + vf * vf)) * area;
+    hmin = fmin(hs, h);
+    wet = H > (real)0 || isnan(H);
+    if (isnan(H) || isnan(S[n + k]) || isnan(S[2 * n + k]) || isnan(qfx[k]) || isnan(qfy[k])) speed = NAN;
+  }
+  s[DIAG_SPEED * TILE_CELLS + lid] = speed;
+  s[DIAG_VOLUME * TILE_CELLS + lid] = volf;
+  s[DIAG_OUTFLOW * TILE_CELLS + lid] = outf;
+  s[DIAG_KINETIC * TILE_CELLS + lid] = ke;
+  s[DIAG_MIN_H * TILE_CELLS + lid] = hmin;
+  s[DIAG_VOLUME_S * TILE_CELLS + lid] = vols;
+  s[DIAG_OUTFLOW_S * TILE_CELLS + lid] = outs;
+  s_wet[lid] = wet;
+  reduce_tile(s, s_wet, DIAG_MAX_ROWS, lid, get_group_id(0), p->tiles_x * p->tiles_y, partial, tile_wet,
+              tile_list[get_group_id(0)]);
+}
+
+/// Running maxima, components of `maxima` (each n cells): 0 h_f, 1 v_f, 2 h_s, 3 v_s, 4 H,
+/// 5 solid fraction, 6 impact pressure [Pa]; arrival: first time H exceeds the threshold.
+__kernel void debris_track_maxima(__constant const FlowParams* p, __constant const DebrisParams* dp,
+                                  __global const uchar* mask, __global const int* tile_list, __global const real* S,
+                                  __global const real* hf, __global const real* qfx, __global const real* qfy,
+                                  __global real* maxima, __global real* arrival, const real t) {
+  const int2 c = tile_cell(p, tile_list);
+  const int i = c.x, j = c.y;
+  if (i >= p->nx || j >= p->ny || !cell_inside(p, mask, i, j)) return;
+  const int n = p->nx * p->ny;
+  const int k = cell_index(p, i, j);
+  const real hs = S[k], h = hf[k], H = hs + h;
+  const real us = velocity(hs, S[n + k], p->h_dry), vs = velocity(hs, S[2 * n + k], p->h_dry);
+  const real uf = velocity(h, qfx[k], p->h_dry), vf = velocity(h, qfy[k], p->h_dry);
+  const real rho_s = hs > p->h_dry ? S[4 * n + k] / hs : dp->rho_s_default;
+  const real ms = rho_s * hs, mf = dp->rho_f * h;
+  real impact = 0, frac = 0;
+  if (H > p->h_dry) {
+    // Mixture density and momentum-weighted mixture velocity.
+    const real umx = (ms * us + mf * uf) / (ms + mf), umy = (ms * vs + mf * vf) / (ms + mf);
+    impact = (ms + mf) / H * (umx * umx + umy * umy);
+    frac = hs / H;
+  }
+  const real vals[7] = {h, sqrt(uf * uf + vf * vf), hs, sqrt(us * us + vs * vs), H, frac, impact};
+  for (int q = 0; q < 7; ++q) maxima[q * n + k] = fmax(maxima[q * n + k], vals[q]);
+  if (arrival[k] < (real)0 && H > p->arrival_h) arrival[k] = t;
+}

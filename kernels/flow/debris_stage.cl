@@ -1,0 +1,325 @@
+// One SSP-RK2 stage of the two-phase debris-flow grid model (spec §4, "grid mode"; Pudasaini 2012),
+// for one cell per work-item, followed by the stiff point sources of that stage:
+//   U_out = S_ds( a U_base + (1 - a) (U_st + dt L(U_st)) ),   ds = dt (stage 1), dt/2 (stage 2).
+// Fluid (h_f, q_f): shallow water over the bed b + h_s with the mixture surface eta = b + h_s + h_f,
+//   which is exactly the fluid-pressure force -g_p h_f dH/dx - g_n h_f db/dx - (1/2) g_p H^2 dalpha_s/dx
+//   of spec §4 (hydrostatic reconstruction over b + h_s: a fluid or mixture at rest stays at rest).
+// Solids (h_s, q_s): flux h_s u_s^2 + h_s Pi with the lateral pressure Pi = max(0, K (1 - gamma) g_p H/2
+//   - 2 c sqrt(K) / rho_s) (Savage-Hutter with Bell's cohesion reduction, OpenLISEM P.43), hydrostatic
+//   reconstruction over b, the bed term -g_n h_s db/dx and the buoyancy -gamma g_p h_s dH/dx.
+// Passive scalars carried with the solids (conserved as h_s * value): tan of nothing, but the
+//   internal friction angle phi, the solid density rho_s and the grain size d, upwinded.
+// Sources S (implicit, per stage): drag with virtual mass as an exact, momentum-conserving relaxation
+//   of the phase velocities; Coulomb friction tan(delta) (1 - B gamma_eff) g_n h_s on the solids and
+//   Manning on the fluid, both of which can stop motion but never reverse it.
+// Static solids: a cell whose solid motion friction stopped in the last stage is "locked"; no solid
+//   mass crosses a face between two locked (or empty) cells, so material at rest whose driving force
+//   stays below friction does not creep by numerical diffusion; pressure still acts, so a pile that
+//   friction cannot hold starts to move in the next stage.
+#include "flow/debris_closures.cl"
+#include "flow/riemann.cl"
+
+#define NSOLID 6  // solid state components: h_s, q_sx, q_sy, h_s phi, h_s rho_s, h_s d
+
+/// Primitive state of one cell along a direction: solids and fluid. The solids reconstruct the bed b
+/// itself (its faces then give the solid surface e_s = b + h_s), so the bed-slope force of a cell at
+/// the edge of a solid mass is the true slope even where the solid surface has a kink.
+typedef struct {
+  real hs, es, us, vs;  // solid thickness, bed b (primitive) / solid surface b + h_s (faces), velocities
+  real hf, ef, uf, vf;  // fluid thickness, mixture surface b + h_s + h_f, velocities
+} Prim2;
+
+typedef struct {
+  Prim2 lo, hi;
+} Faces2;
+
+inline Prim2 load_prim2(__constant const FlowParams* p, __global const real* S, __global const real* hf,
+                        __global const real* qfx, __global const real* qfy, __global const real* b, int k, int n,
+                        int dir) {
+  Prim2 c;
+  c.hs = S[k];
+  c.es = b[k];
+  const real us = velocity(c.hs, S[n + k], p->h_dry), vs = velocity(c.hs, S[2 * n + k], p->h_dry);
+  c.us = dir == 0 ? us : vs;
+  c.vs = dir == 0 ? vs : us;
+  c.hf = hf[k];
+  c.ef = b[k] + c.hs + c.hf;
+  const real uf = velocity(c.hf, qfx[k], p->h_dry), vf = velocity(c.hf, qfy[k], p->h_dry);
+  c.uf = dir == 0 ? uf : vf;
+  c.vf = dir == 0 ? vf : uf;
+  return c;
+}
+
+/// MUSCL reconstruction of both phases of cell c (zero slopes next to outside cells).
+inline Faces2 reconstruct2(Prim2 m, int m_in, Prim2 c, Prim2 p, int p_in) {
+  const Prim s0 = {c.hs, c.es, c.us, c.vs}, sm = {m.hs, m.es, m.us, m.vs}, sp = {p.hs, p.es, p.us, p.vs};
+  const Prim f0 = {c.hf, c.ef, c.uf, c.vf}, fm = {m.hf, m.ef, m.uf, m.vf}, fp = {p.hf, p.ef, p.uf, p.vf};
+  const CellFaces s = reconstruct(sm, m_in, s0, sp, p_in), f = reconstruct(fm, m_in, f0, fp, p_in);
+  Faces2 r;
+  r.lo = (Prim2){s.h_lo, s.h_lo + s.e_lo, s.un_lo, s.ut_lo, f.h_lo, f.e_lo, f.un_lo, f.ut_lo};
+  r.hi = (Prim2){s.h_hi, s.h_hi + s.e_hi, s.un_hi, s.ut_hi, f.h_hi, f.e_hi, f.un_hi, f.ut_hi};
+  return r;
+}
+
+/// Per-cell material state: gamma (0 where no fluid), phi, delta, rho_s, d, cohesion over rho_s.
+typedef struct {
+  real gamma, phi, delta, rho_s, d, c_over_rho;
+} Material;
+
+inline real scalar_of(__global const real* S, int n, int comp, int k, real h_dry, real fallback) {
+  const real hs = S[k];
+  return hs > h_dry ? S[comp * n + k] / hs : fallback;
+}
+
+inline Material material_of(__constant const FlowParams* p, __constant const DebrisParams* dp, __global const real* S,
+                            __global const real* hf, __global const real* delta, __global const real* cohesion, int k,
+                            int n) {
+  Material m;
+  m.phi = scalar_of(S, n, 3, k, p->h_dry, dp->phi_default);
+  m.rho_s = scalar_of(S, n, 4, k, p->h_dry, dp->rho_s_default);
+  m.d = scalar_of(S, n, 5, k, p->h_dry, dp->d_default);
+  m.gamma = hf[k] > p->h_dry ? dp->rho_f / m.rho_s : (real)0;
+  m.delta = dp->delta_from_phi ? m.phi : delta[k];
+  m.c_over_rho = cohesion[k] / m.rho_s;
+  return m;
+}
+
+/// Lateral pressure Pi [m^2/s^2] (per unit solid density and thickness) with coefficient K.
+inline real lateral_pressure(real K, Material m, real g, real H) {
+  return fmax((real)0, (real)0.5 * K * ((real)1 - m.gamma) * g * H - (real)2 * m.c_over_rho * sqrt(K));
+}
+
+typedef struct {
+  real h, e, un, ut, pi;
+} SolidSide;
+
+/// Solid flux through a face (conventions of face_between in riemann.cl); the pressure part is
+/// dimensional (h* Pi). `locked`: no solid mass crosses (both sides static or empty).
+inline Face solid_face(int m_in, SolidSide m, int p_in, SolidSide p, int kind, int locked) {
+  Face f = {0, 0, 0, 0, 0, 0};
+  if (!m_in && !p_in) return f;
+  int wall = 0;
+  if (!m_in) {
+    wall = kind == BOUNDARY_WALL || p.un > (real)0;
+    m = p;
+    m.un = wall ? -p.un : p.un;
+  } else if (!p_in) {
+    wall = kind == BOUNDARY_WALL || m.un < (real)0;
+    p = m;
+    p.un = wall ? -m.un : m.un;
+  }
+  const real bs = fmax(m.e - m.h, p.e - p.h);
+  const real hm = fmax((real)0, m.e - bs), hp = fmax((real)0, p.e - bs);
+  if (hm > (real)0 || hp > (real)0) {
+    const real2 s = wave_speeds(hm, m.un, sqrt((real)2 * m.pi), hp, p.un, sqrt((real)2 * p.pi));
+    const FaceFlux r = hll_core(hm, m.un, m.ut, hm * m.pi, hp, p.un, p.ut, hp * p.pi, s);
+    f.fh = (wall || locked) ? (real)0 : r.fh;
+    f.fqn = r.fqn;
+    f.fqt = (wall || locked) ? (real)0 : r.fqt;
+    f.p = r.p;
+  }
+  f.corr_m = (m.h - hm) * m.pi;
+  f.corr_p = (p.h - hp) * p.pi;
+  return f;
+}
+
+/// Exact relaxation of the phase velocities by drag with virtual mass over ds (momentum-conserving):
+/// dw/dt = -lambda |w|^(j-1) w for w = u_f - u_s, lambda = rho_s H C (1/m_s + 1/m_f) /
+/// (1 + m_vm (1/m_s + 1/m_f)), m_s = rho_s h_s, m_f = rho_f h_f, m_vm = C_vm rho_f h_s,
+/// C_vm = (1 + 2 alpha_s) / (2 alpha_f) (OpenLISEM Hazard P.35 with alpha_u = alpha_f in grid mode).
+inline void drag_relax(__constant const DebrisParams* dp, Material mat, real hs, real hf, real* qs, real* qf,
+                       real ds) {
+  const real H = hs + hf, as = hs / H, af = hf / H;
+  const real ms = mat.rho_s * hs, mf = dp->rho_f * hf;
+  const real inv = (real)1 / ms + (real)1 / mf;
+  const real mvm = dp->virtual_mass ? (real)0.5 * ((real)1 + (real)2 * as) / af * dp->rho_f * hs : (real)0;
+  const real C = drag_coefficient(dp, as, mat.rho_s, mat.d);
+  const real lambda = mat.rho_s * H * C * inv / ((real)1 + mvm * inv);
+  for (int c = 0; c < 2; ++c) {
+    const real us = qs[c] / hs, uf = qf[c] / hf;
+    const real P = ms * us + mf * uf;
+    const real w = uf - us;
+    const real w1 = dp->drag_law == DRAG_QUADRATIC ? w / ((real)1 + lambda * fabs(w) * ds) : w * exp(-lambda * ds);
+    const real us1 = (P - mf * w1) / (ms + mf);
+    qs[c] = hs * us1;
+    qf[c] = hf * (us1 + w1);
+  }
+}
+
+__kernel void debris_stage(__constant const FlowParams* p, __constant const DebrisParams* dp,
+                           __global const uchar* mask, __global const int* tile_list, __global const real* b,
+                           __global const real* gp, __global const real* gn, __global const real* manning,
+                           __global const real* delta, __global const real* cohesion,
+                           __global const real* S_base, __global const real* hf_base, __global const real* qfx_base,
+                           __global const real* qfy_base, __global const real* S_st, __global const real* hf_st,
+                           __global const real* qfx_st, __global const real* qfy_st, __global const uchar* lock_st,
+                           __global real* S_out, __global real* hf_out, __global real* qfx_out, __global real* qfy_out,
+                           __global uchar* lock_out, __global real* out_step, const real dt, const real a,
+                           const real w_out, const real ds, const int first_stage) {
+  const int2 cc = tile_cell(p, tile_list);
+  const int i = cc.x, j = cc.y;
+  if (i >= p->nx || j >= p->ny || !cell_inside(p, mask, i, j)) return;
+  const int n = p->nx * p->ny;
+  const int k = cell_index(p, i, j);
+  const real g = gp[k], gnk = gn[k];
+  const real dtdx = dt / p->dx;
+  const Material mc = material_of(p, dp, S_st, hf_st, delta, cohesion, k, n);
+
+  real dS[NSOLID] = {0, 0, 0, 0, 0, 0};
+  real dhf = 0, dqf[2] = {0, 0}, out_s = 0, out_f = 0;
+  real mass_s[2], mass_f[2], norm_s[2], norm_f[2], tang_s[2], tang_f[2], sc_flux[3][2];
+  for (int dir = 0; dir < 2; ++dir) {
+    const int di = dir == 0, dj = dir == 1;
+    const int m_in = cell_inside(p, mask, i - di, j - dj), p_in = cell_inside(p, mask, i + di, j + dj);
+    const int km = m_in ? cell_index(p, i - di, j - dj) : k, kp = p_in ? cell_index(p, i + di, j + dj) : k;
+    // Reconstructions of this cell and of its two neighbours along dir (each from its own neighbours).
+    const Prim2 c0 = load_prim2(p, S_st, hf_st, qfx_st, qfy_st, b, k, n, dir);
+    const Prim2 cm = load_prim2(p, S_st, hf_st, qfx_st, qfy_st, b, km, n, dir);
+    const Prim2 cp = load_prim2(p, S_st, hf_st, qfx_st, qfy_st, b, kp, n, dir);
+    const Faces2 own = reconstruct2(cm, m_in, c0, cp, p_in);
+    Faces2 fm_cell = own, fp_cell = own;
+    if (m_in) {
+      const int mm_in = cell_inside(p, mask, i - 2 * di, j - 2 * dj);
+      const Prim2 cmm = mm_in ? load_prim2(p, S_st, hf_st, qfx_st, qfy_st, b, cell_index(p, i - 2 * di, j - 2 * dj), n, dir) : cm;
+      fm_cell = reconstruct2(cmm, mm_in, cm, c0, 1);
+    }
+    if (p_in) {
+      const int pp_in = cell_inside(p, mask, i + 2 * di, j + 2 * dj);
+      const Prim2 cpp = pp_in ? load_prim2(p, S_st, hf_st, qfx_st, qfy_st, b, cell_index(p, i + 2 * di, j + 2 * dj), n, dir) : cp;
+      fp_cell = reconstruct2(c0, 1, cp, cpp, pp_in);
+    }
+    const int kind_m = boundary_kind(p, i - di, j - dj), kind_p = boundary_kind(p, i + di, j + dj);
+    const real gm = gp[km], gpp = gp[kp];
+
+    // Fluid faces: shallow water over b + h_s (the bed of the fluid is e - h = b + h_s).
+    const Side fmL = {fm_cell.hi.hf, fm_cell.hi.ef, fm_cell.hi.uf, fm_cell.hi.vf, gm};
+    const Side fmR = {own.lo.hf, own.lo.ef, own.lo.uf, own.lo.vf, g};
+    const Side fpL = {own.hi.hf, own.hi.ef, own.hi.uf, own.hi.vf, g};
+    const Side fpR = {fp_cell.lo.hf, fp_cell.lo.ef, fp_cell.lo.uf, fp_cell.lo.vf, gpp};
+    const Face Fm = face_between(m_in, fmL, 1, fmR, kind_m);
+    const Face Fp = face_between(1, fpL, p_in, fpR, kind_p);
+
+    // Solid faces: each side's lateral pressure with its cell's K (active where its solids extend
+    // along dir, passive where they contract), from its face thickness of the mixture.
+    const Material mm = m_in ? material_of(p, dp, S_st, hf_st, delta, cohesion, km, n) : mc;
+    const Material mp = p_in ? material_of(p, dp, S_st, hf_st, delta, cohesion, kp, n) : mc;
+    real Km, Kc, Kp;
+    if (dp->earth_pressure == EARTH_CONSTANT) {
+      Km = Kc = Kp = dp->k_const;
+    } else {
+      Km = earth_pressure(mm.phi, mm.delta, fm_cell.hi.us - fm_cell.lo.us < (real)0);
+      Kc = earth_pressure(mc.phi, mc.delta, own.hi.us - own.lo.us < (real)0);
+      Kp = earth_pressure(mp.phi, mp.delta, fp_cell.hi.us - fp_cell.lo.us < (real)0);
+    }
+    const SolidSide smL = {fm_cell.hi.hs, fm_cell.hi.es, fm_cell.hi.us, fm_cell.hi.vs,
+                           lateral_pressure(Km, mm, gm, fm_cell.hi.hs + fm_cell.hi.hf)};
+    const SolidSide smR = {own.lo.hs, own.lo.es, own.lo.us, own.lo.vs, lateral_pressure(Kc, mc, g, own.lo.hs + own.lo.hf)};
+    const SolidSide spL = {own.hi.hs, own.hi.es, own.hi.us, own.hi.vs, lateral_pressure(Kc, mc, g, own.hi.hs + own.hi.hf)};
+    const SolidSide spR = {fp_cell.lo.hs, fp_cell.lo.es, fp_cell.lo.us, fp_cell.lo.vs,
+                           lateral_pressure(Kp, mp, gpp, fp_cell.lo.hs + fp_cell.lo.hf)};
+    const int lk = lock_st[k];
+    const Face Sm = solid_face(m_in, smL, 1, smR, kind_m, lk && (!m_in || lock_st[km]));
+    const Face Sp = solid_face(1, spL, p_in, spR, kind_p, lk && (!p_in || lock_st[kp]));
+
+    mass_f[dir] = Fp.fh - Fm.fh;
+    mass_s[dir] = Sp.fh - Sm.fh;
+    // Fluid normal momentum: as the single-phase stage, over the bed b + h_s.
+    real sf = (Fp.fqn + g * (Fp.p + Fp.corr_m)) - (Fm.fqn + g * (Fm.p + Fm.corr_p));
+    if (c0.hf > (real)0) {
+      sf += g * (real)0.5 * (own.lo.hf + own.hi.hf) * ((own.hi.ef - own.hi.hf) - (own.lo.ef - own.lo.hf));
+      const real dg = g - gnk;
+      if (dg != (real)0 && m_in && p_in) sf -= dg * c0.hf * (real)0.5 * (b[kp] - b[km]);
+    }
+    // Solid normal momentum: lateral pressure, bed slope with g_n, buoyancy from the mixture thickness.
+    real ss = (Sp.fqn + Sp.p + Sp.corr_m) - (Sm.fqn + Sm.p + Sm.corr_p);
+    if (c0.hs > (real)0) {
+      const real hmean = (real)0.5 * (own.lo.hs + own.hi.hs);
+      ss += gnk * hmean * ((own.hi.es - own.hi.hs) - (own.lo.es - own.lo.hs));
+      ss += mc.gamma * g * hmean * ((own.hi.hs + own.hi.hf) - (own.lo.hs + own.lo.hf));
+    }
+    norm_f[dir] = sf;
+    norm_s[dir] = ss;
+    tang_f[dir] = Fp.fqt - Fm.fqt;
+    tang_s[dir] = Sp.fqt - Sm.fqt;
+    // Scalars: upwind value times the solid mass flux.
+    for (int c = 0; c < 3; ++c) {
+      const real vm = scalar_of(S_st, n, 3 + c, km, p->h_dry, c == 0 ? dp->phi_default : c == 1 ? dp->rho_s_default : dp->d_default);
+      const real v0 = scalar_of(S_st, n, 3 + c, k, p->h_dry, c == 0 ? dp->phi_default : c == 1 ? dp->rho_s_default : dp->d_default);
+      const real vp = scalar_of(S_st, n, 3 + c, kp, p->h_dry, c == 0 ? dp->phi_default : c == 1 ? dp->rho_s_default : dp->d_default);
+      sc_flux[c][dir] = Sp.fh * (Sp.fh >= (real)0 ? v0 : vp) - Sm.fh * (Sm.fh >= (real)0 ? vm : v0);
+    }
+    if (!m_in) out_f -= Fm.fh, out_s -= Sm.fh;
+    if (!p_in) out_f += Fp.fh, out_s += Sp.fh;
+  }
+  dhf = -dtdx * (mass_f[0] + mass_f[1]);
+  dqf[0] = -dtdx * (norm_f[0] + tang_f[1]);
+  dqf[1] = -dtdx * (norm_f[1] + tang_f[0]);
+  dS[0] = -dtdx * (mass_s[0] + mass_s[1]);
+  dS[1] = -dtdx * (norm_s[0] + tang_s[1]);
+  dS[2] = -dtdx * (norm_s[1] + tang_s[0]);
+  for (int c = 0; c < 3; ++c) dS[3 + c] = -dtdx * (sc_flux[c][0] + sc_flux[c][1]);
+
+  // RK combination.
+  real Sn[NSOLID];
+  for (int c = 0; c < NSOLID; ++c) {
+    Sn[c] = S_st[c * n + k] + dS[c];
+    if (a != (real)0) Sn[c] = a * S_base[c * n + k] + ((real)1 - a) * Sn[c];
+  }
+  real hfn = hf_st[k] + dhf, qf[2] = {qfx_st[k] + dqf[0], qfy_st[k] + dqf[1]};
+  if (a != (real)0) {
+    hfn = a * hf_base[k] + ((real)1 - a) * hfn;
+    qf[0] = a * qfx_base[k] + ((real)1 - a) * qf[0];
+    qf[1] = a * qfy_base[k] + ((real)1 - a) * qf[1];
+  }
+  real qs[2] = {Sn[1], Sn[2]};
+  const real hsn = fmax(Sn[0], (real)0);
+  hfn = fmax(hfn, (real)0);
+  if (hsn <= p->h_dry) qs[0] = qs[1] = 0;
+  if (hfn <= p->h_dry) qf[0] = qf[1] = 0;
+
+  // Stiff sources over ds: drag (with virtual mass), then basal friction of each phase.
+  Material mn = mc;
+  mn.rho_s = hsn > p->h_dry ? Sn[4] / hsn : dp->rho_s_default;
+  mn.phi = hsn > p->h_dry ? Sn[3] / hsn : dp->phi_default;
+  mn.d = hsn > p->h_dry ? Sn[5] / hsn : dp->d_default;
+  mn.gamma = hfn > p->h_dry ? dp->rho_f / mn.rho_s : (real)0;
+  mn.delta = dp->delta_from_phi ? mn.phi : delta[k];
+  if (dp->drag_law != DRAG_OFF && hsn > p->h_dry && hfn > p->h_dry) drag_relax(dp, mn, hsn, hfn, qs, qf, ds);
+  uchar locked = 1;
+  if (hsn > p->h_dry) {
+    const real qn = sqrt(qs[0] * qs[0] + qs[1] * qs[1]);
+    const real impulse = ds * tan(mn.delta) * ((real)1 - dp->pore_b * mn.gamma) * gnk * hsn;
+    if (qn <= impulse) {
+      qs[0] = qs[1] = 0;
+    } else {
+      const real f = (real)1 - impulse / qn;
+      qs[0] *= f;
+      qs[1] *= f;
+      locked = 0;
+    }
+  }
+  if (hfn > p->h_dry && manning[k] > (real)0) {
+    const real uf = qf[0] / hfn, vf = qf[1] / hfn;
+    const real n2 = manning[k] * manning[k];
+    const real factor = (real)1 + ds * GRAVITY * n2 * sqrt(uf * uf + vf * vf) / (hfn * cbrt(hfn));
+    qf[0] /= factor;
+    qf[1] /= factor;
+  }
+
+  S_out[k] = hsn;
+  S_out[n + k] = qs[0];
+  S_out[2 * n + k] = qs[1];
+  for (int c = 3; c < NSOLID; ++c) S_out[c * n + k] = hsn > (real)0 ? fmax(Sn[c], (real)0) : (real)0;
+  hf_out[k] = hfn;
+  qfx_out[k] = qf[0];
+  qfy_out[k] = qf[1];
+  lock_out[k] = locked;
+  const real wf = w_out * p->dx;
+  if (first_stage) {
+    out_step[k] = wf * out_f;
+    out_step[n + k] = wf * out_s;
+  } else {
+    out_step[k] += wf * out_f;
+    out_step[n + k] += wf * out_s;
+  }
+}

@@ -1,0 +1,21 @@
+// Host mirror of the two-phase kernels' DebrisParams block (kernels/flow/debris_closures.cl).
+#pragma once
+#include <cstddef>
+#include <cstdint>
+
+namespace talus::flow {
+
+template <class Real>
+struct DebrisParamsT {
+  int32_t earthPressure;  // 0 Savage-Hutter active/passive, 1 constant
+  int32_t dragLaw;        // 0 off, 1 linear, 2 quadratic
+  int32_t virtualMass;
+  int32_t deltaFromPhi;
+  Real kConst, rhoF, poreB, dragMult, dragM, dragBigM, dragKappa, viscA, viscB, phiDefault, rhoSDefault, dDefault;
+};
+
+static_assert(offsetof(DebrisParamsT<float>, kConst) == 16 && sizeof(DebrisParamsT<float>) == 64, "DebrisParams<float>");
+static_assert(offsetof(DebrisParamsT<double>, kConst) == 16 && sizeof(DebrisParamsT<double>) == 112,
+              "DebrisParams<double>");
+
+}  // namespace talus::flow
