@@ -23,7 +23,7 @@ HealthCheck::HealthCheck(const Raster& dem, const flow::FlowInput& in, double cf
   for (std::size_t k = 0; k < in.bed.size(); ++k) {
     if (!in.mask[k]) continue;
     zmin = std::min(zmin, in.bed[k]);
-    zmax = std::max(zmax, in.bed[k] + in.h[k]);
+    zmax = std::max(zmax, in.bed[k] + in.h[k] + (in.hs.empty() ? 0.0 : in.hs[k]));
     if (in.h[k] > 0 && !in.qx.empty())
       v0 = std::max(v0, (std::fabs(in.qx[k]) + std::fabs(in.qy[k])) / in.h[k]);
   }

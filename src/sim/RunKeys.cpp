@@ -96,6 +96,33 @@ void addInputKeys(KeyRegistry& r) {
       << map("Initial Fluid Height", "0", "m", 0, 1e4, "vertical water thickness at t = start");
 }
 
+/// Solids of the two-phase grid model (spec §4): OpenLISEM Hazard's names and units first.
+void addSolidKeys(KeyRegistry& r) {
+  Section(r, "Solids")
+      << flag("Include Initial Solids", "0", "start with the solids of Initial Solid Height (two-phase model)")
+      << map("Initial Solid Height", "0", "m", 0, 1e4, "vertical solid thickness alpha_s H at t = start")
+      << map("Initial Solid Density", "2650", "kg/m^3", 1000, 6000, "density rho_s of the solid grains")
+      << map("Initial Solid IFA", "0.5236", "rad", 0, 1.5, "internal friction angle phi of the solids")
+      << map("Initial Solid Rocksize", "0.01", "m", 1e-6, 100, "representative grain or block size d")
+      << map("Initial Cohesion", "0", "kPa", 0, 1e6, "cohesion c (reduces the lateral pressure, Bell)")
+      << flag("Bed Friction Equals IFA", "1", "bed friction angle delta = internal friction angle phi")
+      << map("Bed Friction Angle", "0.5236", "rad", 0, 1.5, "bed friction angle delta (when not equal to IFA)")
+      << choice("Earth Pressure", {"savage-hutter", "constant"}, "savage-hutter",
+                "lateral earth-pressure coefficient: active/passive from phi and delta, or constant")
+      << real("Earth Pressure Coefficient", "1", "-", 0.01, 100, "K when Earth Pressure=constant")
+      << real("Pore Pressure Factor", "1", "-", 0, 1, "B: share of buoyancy that reduces basal friction")
+      << real("Fluid Density", "1000", "kg/m^3", 500, 2000, "density rho_f of the fluid phase")
+      << choice("Drag Law", {"off", "linear", "quadratic"}, "linear",
+                "solid-fluid drag of Pudasaini (2012): j = 1 (linear) or j = 2 (quadratic)")
+      << real("Drag coefficient multiplier", "1", "-", 0, 1e9, "multiplies the drag coefficient")
+      << real("Drag P Exponent", "1", "-", 0.1, 10, "m in P = alpha_s^m (fluid-like / solid-like drag)")
+      << real("Drag M", "2.4", "-", 1, 10, "M in the solid-like drag G = alpha_f^(M-1) (Pitman & Le 2005)")
+      << real("Drag Smoothing Velocity", "10", "m/s", 0, 1e4, "K of the smoothing function S_p (P.33)")
+      << real("Viscosity Coefficient", "0.001", "Pa s", 1e-6, 1e5, "a in O'Brien-Julien eta = a exp(b alpha_s)")
+      << real("Viscosity Exponent", "10", "-", 0, 50, "b in O'Brien-Julien eta = a exp(b alpha_s)")
+      << flag("Virtual Mass", "1", "virtual mass in the phase exchange (C_vm = (1 + 2 alpha_s) / (2 alpha_f))");
+}
+
 void addTimeKeys(KeyRegistry& r) {
   Section(r, "Time")
       << real("Start Time", "0", "min", 0, 1e6, "simulated time at the start")
@@ -147,6 +174,7 @@ void addOutputKeys(KeyRegistry& r) {
 KeyRegistry buildKeys() {
   KeyRegistry r;
   addInputKeys(r);
+  addSolidKeys(r);
   addTimeKeys(r);
   addFlowKeys(r);
   addNumericsKeys(r);

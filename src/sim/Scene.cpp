@@ -77,6 +77,36 @@ Scene loadScene(const io::RunConfig& cfg) {
     s.flow.h.assign(g.cells(), 0.0);
 
   flow::FlowSettings& f = s.settings;
+  if (cfg.flag("Include Initial Solids")) {
+    std::vector<double> hs = loadMap(cfg, "Initial Solid Height", s.dem, demKey.file);
+    bool any = false;
+    for (std::size_t k = 0; k < hs.size(); ++k) any = any || (s.dem.valid[k] && hs[k] > 0.0);
+    // A scene with no solids runs exactly the single-phase path (spec §3, issue: grid mode).
+    if (any) {
+      f.twoPhase = true;
+      s.flow.hs = std::move(hs);
+      s.flow.rhoS = loadMap(cfg, "Initial Solid Density", s.dem, demKey.file);
+      s.flow.phi = loadMap(cfg, "Initial Solid IFA", s.dem, demKey.file);
+      s.flow.grain = loadMap(cfg, "Initial Solid Rocksize", s.dem, demKey.file);
+      s.flow.cohesion = loadMap(cfg, "Initial Cohesion", s.dem, demKey.file);
+      for (double& c : s.flow.cohesion) c *= 1000.0;  // kPa (OpenLISEM Hazard) -> Pa
+      s.flow.delta = loadMap(cfg, "Bed Friction Angle", s.dem, demKey.file);
+    }
+  }
+  flow::DebrisSettings& d = f.debris;
+  d.earthPressure = flow::parseEarthPressure(cfg.choice("Earth Pressure"));
+  d.kConst = cfg.real("Earth Pressure Coefficient");
+  d.poreB = cfg.real("Pore Pressure Factor");
+  d.fluidDensity = cfg.real("Fluid Density");
+  d.drag = flow::parseDragLaw(cfg.choice("Drag Law"));
+  d.dragMultiplier = cfg.real("Drag coefficient multiplier");
+  d.dragPExponent = cfg.real("Drag P Exponent");
+  d.dragM = cfg.real("Drag M");
+  d.dragKappa = cfg.real("Drag Smoothing Velocity");
+  d.viscA = cfg.real("Viscosity Coefficient");
+  d.viscB = cfg.real("Viscosity Exponent");
+  d.virtualMass = cfg.flag("Virtual Mass");
+  d.deltaFromPhi = cfg.flag("Bed Friction Equals IFA");
   f.limiter = flow::parseLimiter(cfg.choice("Limiter"));
   f.riemann = flow::parseRiemann(cfg.choice("Riemann Solver"));
   f.cfl = cfg.real("CFL");

@@ -14,8 +14,11 @@ namespace {
 
 constexpr const char* kCsvHeader =
     "step,time_s,dt_s,volume_m3,outflow_m3,cumulative_outflow_m3,balance_error,kinetic_energy_J,max_wave_speed_m_s,"
-    "wall_s";
-constexpr double kWaterDensity = 1000.0;  // [kg/m^3] to report kinetic energy in joules
+    "fluid_volume_m3,solid_volume_m3,fluid_outflow_m3,solid_outflow_m3,wall_s";
+
+/// Total volume (both phases) and total outflow of the last step.
+double totalVolume(const flow::FlowDiagnostics& d) { return d.volume + d.volumeSolid; }
+double totalOutflow(const flow::FlowDiagnostics& d) { return d.outflow + d.outflowSolid; }
 
 std::string jsonEscape(const std::string& s) {
   std::string o;
@@ -38,7 +41,7 @@ Simulation::Simulation(const Scene& scene, const io::RunConfig& config, const st
   solver_->setInput(scene.flow, scene.startTime);
   health_ = std::make_unique<HealthCheck>(scene.dem, scene.flow, scene.settings.cfl);
   for (uint8_t v : scene.dem.valid) domainCells_ += v;
-  initialVolume_ = solver_->diagnostics().volume;
+  initialVolume_ = totalVolume(solver_->diagnostics());
   if (mode != OutputMode::Resume) {
     out_->writeText("run.resolved.run", config.echo());
     return;
@@ -73,6 +76,11 @@ void Simulation::writeReport() {
     if (h[k] > scene_.settings.hDry) v[k] = std::hypot(qx[k], qy[k]) / h[k];
   out_->writeMap(hName, h);
   out_->writeMap(vName, v);
+  if (solver_->twoPhase()) {
+    char sName[64];
+    std::snprintf(sName, sizeof sName, "series/hs_%04d", index);
+    out_->writeMap(sName, solver_->hs());
+  }
   std::ostringstream line;
   line.precision(12);
   line << index << "," << solver_->time() << "," << hName << "," << vName << "\n";
@@ -115,7 +123,7 @@ RunSummary Simulation::run(const std::function<void(const Progress&)>& onProgres
     s.totalOutflow = totalOutflow_;
     s.wallSeconds = wall();
     s.simulatedSeconds = solver_->time() - t0;
-    s.finalVolume = solver_->diagnostics().volume;
+    s.finalVolume = totalVolume(solver_->diagnostics());
     s.cellUpdatesPerSecond = s.wallSeconds > 0 ? static_cast<double>(domainCells_) * s.steps / s.wallSeconds : 0;
     s.volumeBalanceError =
         s.initialVolume > 0 ? (s.finalVolume + s.totalOutflow - s.initialVolume) / s.initialVolume : 0.0;
@@ -142,11 +150,15 @@ RunSummary Simulation::run(const std::function<void(const Progress&)>& onProgres
       throw SimulationError(failure_);
     }
     const flow::FlowDiagnostics& d = solver_->diagnostics();
-    totalOutflow_ += d.outflow;
-    const double balance = initialVolume_ > 0 ? (d.volume + totalOutflow_ - initialVolume_) / initialVolume_ : 0;
-    char line[400];
-    std::snprintf(line, sizeof line, "%lld,%.9g,%.6g,%.12g,%.6g,%.12g,%.3e,%.6g,%.6g,%.4f", steps_, solver_->time(), dt,
-                  d.volume, d.outflow, totalOutflow_, balance, kWaterDensity * d.kinetic, d.maxSpeed, wall());
+    totalOutflow_ += totalOutflow(d);
+    const double volume = totalVolume(d);
+    const double balance = initialVolume_ > 0 ? (volume + totalOutflow_ - initialVolume_) / initialVolume_ : 0;
+    // The single-phase diagnostics give kinetic energy per unit density; the two-phase ones joules.
+    const double kinetic = solver_->twoPhase() ? d.kinetic : scene_.settings.debris.fluidDensity * d.kinetic;
+    char line[512];
+    std::snprintf(line, sizeof line, "%lld,%.9g,%.6g,%.12g,%.6g,%.12g,%.3e,%.6g,%.6g,%.12g,%.12g,%.6g,%.6g,%.4f", steps_,
+                  solver_->time(), dt, volume, totalOutflow(d), totalOutflow_, balance, kinetic, d.maxSpeed, d.volume,
+                  d.volumeSolid, d.outflow, d.outflowSolid, wall());
     out_->appendDiagnostics(kCsvHeader, line);
     if (solver_->time() >= nextReport * (1 - 1e-15)) {
       writeReport();
@@ -169,9 +181,32 @@ void Simulation::writeFinal(const RunSummary& s, bool failed) {
   // On failure the maxima and arrival so far are still written; the final state may hold NaN.
   const double never = -1.0;
   if (!failed) out_->writeMap("hffinal", solver_->h());
-  out_->writeMap("hfmax", solver_->hMax());
-  out_->writeMap("vfmax", solver_->vMax());
   out_->writeMap("tarrival", solver_->arrival(), &never);
+  if (!solver_->twoPhase()) {
+    out_->writeMap("hfmax", solver_->hMax());
+    out_->writeMap("vfmax", solver_->vMax());
+  } else {
+    const flow::DebrisMaxima m = solver_->debrisMaxima();
+    out_->writeMap("hfmax", m.hf);
+    out_->writeMap("vfmax", m.vf);
+    out_->writeMap("hsmax", m.hs);
+    out_->writeMap("vsmax", m.vs);
+    out_->writeMap("htmax", m.h);
+    out_->writeMap("sfracmax", m.solidFraction);
+    out_->writeMap("pimpactmax", m.impactPressure);
+    if (!failed) {
+      const std::vector<double> hs = solver_->hs(), qsx = solver_->qsx(), qsy = solver_->qsy(), hf = solver_->h();
+      std::vector<double> total(hs.size()), deposit(hs.size(), 0.0);
+      for (std::size_t k = 0; k < hs.size(); ++k) {
+        total[k] = hs[k] + hf[k];
+        // Deposit: solids that have come to rest (friction stopped them exactly).
+        if (qsx[k] == 0.0 && qsy[k] == 0.0) deposit[k] = hs[k];
+      }
+      out_->writeMap("hsfinal", hs);
+      out_->writeMap("htfinal", total);
+      out_->writeMap("deposit", deposit);
+    }
+  }
   out_->writeText("summary.json", summaryJson(s, failed));
 }
 
