@@ -29,7 +29,21 @@ typedef struct {
   real phi_default;    // internal friction angle where no solids are [rad]
   real rho_s_default;  // solid density where no solids are [kg/m^3]
   real d_default;      // grain size where no solids are [m]
+  real film_h;         // solid layers thinner than this have desingularised velocities [m]
+  real pad0, pad1, pad2;
 } DebrisParams;
+
+/// Solid velocity desingularised in films (Kurganov & Petrova 2007, eq. 2.21, with eps = max(h_dry,
+/// film_h)): u = sqrt(2) h q / sqrt(h^4 + max(h^4, eps^4)). In a solid film of a fraction of a
+/// millimetre q/h is ill-conditioned and would drive spurious speeds (and tiny time steps) at thin
+/// fronts. Above eps it is exactly q/h. The stage rewrites q = h u.
+inline real solid_velocity(real h, real q, real h_dry, real film_h) {
+  if (h <= h_dry) return (real)0;
+  const real eps = fmax(h_dry, film_h);
+  if (h >= eps) return q / h;
+  const real h4 = h * h * h * h, e4 = eps * eps * eps * eps;
+  return M_SQRT2 * h * q / sqrt(h4 + fmax(h4, e4));
+}
 
 /// Savage & Hutter (1989) earth-pressure coefficient: K = 2/cos^2(phi) (1 -+ sqrt(1 - cos^2(phi) /
 /// cos^2(delta))) - 1, active (-, the flow extends) or passive (+, it contracts); the root's argument

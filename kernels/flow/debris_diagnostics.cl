@@ -1,5 +1,6 @@
 // Diagnostics and running maxima of the two-phase model (spec §8), one work-group per active tile:
-// CFL speed max over cells of max(|u_s| + |v_s|, |u_f| + |v_f|) + 2 sqrt(g_p H max(1, K_passive)),
+// CFL speed max over cells of max(|u_s| + |v_s|, |u_f| + |v_f|) + 2 (sqrt(g H max(1, K_passive)) + w),
+// w the bed-slope speed of diagnostics.cl,
 // volumes and outflow of each phase, kinetic energy (J, both phases), smallest thickness; and per
 // cell the maxima of each phase's thickness and speed, of the total thickness, the solid fraction
 // and the impact pressure rho_m |u_m|^2 of the mixture, and the arrival time of the mixture.
@@ -10,7 +11,8 @@ __kernel __attribute__((reqd_work_group_size(TILE, TILE, 1)))
 void debris_tile_diagnostics(__constant const FlowParams* p, __constant const DebrisParams* dp,
                              __global const uchar* mask, __global const int* tile_list, __global const real* S,
                              __global const real* hf, __global const real* qfx, __global const real* qfy,
-                             __global const real* gp, __global const real* delta, __global const real* out_step,
+                             __global const real* slope_speed, __global const real* delta,
+                             __global const real* out_step,
                              __global real* partial, __global int* tile_wet) {
   __local real s[DIAG_MAX_ROWS * TILE_CELLS];
   __local int s_wet[TILE_CELLS];
@@ -23,14 +25,15 @@ void debris_tile_diagnostics(__constant const FlowParams* p, __constant const De
   if (i < p->nx && j < p->ny && cell_inside(p, mask, i, j)) {
     const int k = cell_index(p, i, j);
     const real hs = S[k], h = hf[k], H = fmax(hs, (real)0) + fmax(h, (real)0);
-    const real us = velocity(hs, S[n + k], p->h_dry), vs = velocity(hs, S[2 * n + k], p->h_dry);
+    const real us = solid_velocity(hs, S[n + k], p->h_dry, dp->film_h), vs = solid_velocity(hs, S[2 * n + k], p->h_dry, dp->film_h);
     const real uf = velocity(h, qfx[k], p->h_dry), vf = velocity(h, qfy[k], p->h_dry);
     const real rho_s = hs > p->h_dry ? S[4 * n + k] / hs : dp->rho_s_default;
     const real phi = hs > p->h_dry ? S[3 * n + k] / hs : dp->phi_default;
     const real K = dp->earth_pressure == EARTH_CONSTANT ? dp->k_const
                                                         : earth_pressure(phi, dp->delta_from_phi ? phi : delta[k], 1);
     const real area = p->dx * p->dx;
-    speed = H > (real)0 ? fmax(fabs(us) + fabs(vs), fabs(uf) + fabs(vf)) + (real)2 * sqrt(gp[k] * H * fmax((real)1, K))
+    speed = H > (real)0 ? fmax(fabs(us) + fabs(vs), fabs(uf) + fabs(vf)) +
+                              (real)2 * (sqrt(GRAVITY * H * fmax((real)1, K)) + slope_speed[k])
                         : (real)0;
     volf = h * area;
     vols = hs * area;
@@ -65,7 +68,7 @@ __kernel void debris_track_maxima(__constant const FlowParams* p, __constant con
   const int n = p->nx * p->ny;
   const int k = cell_index(p, i, j);
   const real hs = S[k], h = hf[k], H = hs + h;
-  const real us = velocity(hs, S[n + k], p->h_dry), vs = velocity(hs, S[2 * n + k], p->h_dry);
+  const real us = solid_velocity(hs, S[n + k], p->h_dry, dp->film_h), vs = solid_velocity(hs, S[2 * n + k], p->h_dry, dp->film_h);
   const real uf = velocity(h, qfx[k], p->h_dry), vf = velocity(h, qfy[k], p->h_dry);
   const real rho_s = hs > p->h_dry ? S[4 * n + k] / hs : dp->rho_s_default;
   const real ms = rho_s * hs, mf = dp->rho_f * h;
@@ -76,7 +79,11 @@ __kernel void debris_track_maxima(__constant const FlowParams* p, __constant con
     impact = (ms + mf) / H * (umx * umx + umy * umy);
     frac = hs / H;
   }
-  const real vals[7] = {h, sqrt(uf * uf + vf * vf), hs, sqrt(us * us + vs * vs), H, frac, impact};
+  // Speeds and impact pressure count where the phase (mixture) is thicker than the arrival threshold,
+  // as flow maps usually do: films thinner than that carry no meaningful velocity.
+  const real thick = p->arrival_h;
+  const real vals[7] = {h, h > thick ? sqrt(uf * uf + vf * vf) : (real)0, hs, hs > thick ? sqrt(us * us + vs * vs) : (real)0,
+                        H, frac, H > thick ? impact : (real)0};
   for (int q = 0; q < 7; ++q) maxima[q * n + k] = fmax(maxima[q * n + k], vals[q]);
   if (arrival[k] < (real)0 && H > p->arrival_h) arrival[k] = t;
 }

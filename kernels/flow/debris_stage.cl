@@ -9,9 +9,10 @@
 //   reconstruction over b, the bed term -g_n h_s db/dx and the buoyancy -gamma g_p h_s dH/dx.
 // Passive scalars carried with the solids (conserved as h_s * value): tan of nothing, but the
 //   internal friction angle phi, the solid density rho_s and the grain size d, upwinded.
-// Sources S (implicit, per stage): drag with virtual mass as an exact, momentum-conserving relaxation
-//   of the phase velocities; Coulomb friction tan(delta) (1 - B gamma_eff) g_n h_s on the solids and
-//   Manning on the fluid, both of which can stop motion but never reverse it.
+// Sources S (implicit, per stage, first order in time): Coulomb friction tan(delta) (1 - B gamma_eff)
+//   g_n h_s on the solids, then drag with virtual mass as an exact, momentum-conserving relaxation of
+//   the phase velocities (held solids stay at rest), then Manning on the fluid; friction can stop
+//   motion but never reverse it.
 // Static solids: a cell whose solid motion friction stopped in the last stage is "locked"; no solid
 //   mass crosses a face between two locked (or empty) cells, so material at rest whose driving force
 //   stays below friction does not creep by numerical diffusion; pressure still acts, so a pile that
@@ -33,13 +34,13 @@ typedef struct {
   Prim2 lo, hi;
 } Faces2;
 
-inline Prim2 load_prim2(__constant const FlowParams* p, __global const real* S, __global const real* hf,
-                        __global const real* qfx, __global const real* qfy, __global const real* b, int k, int n,
-                        int dir) {
+inline Prim2 load_prim2(__constant const FlowParams* p, __constant const DebrisParams* dp, __global const real* S,
+                        __global const real* hf, __global const real* qfx, __global const real* qfy,
+                        __global const real* b, int k, int n, int dir) {
   Prim2 c;
   c.hs = S[k];
   c.es = b[k];
-  const real us = velocity(c.hs, S[n + k], p->h_dry), vs = velocity(c.hs, S[2 * n + k], p->h_dry);
+  const real us = solid_velocity(c.hs, S[n + k], p->h_dry, dp->film_h), vs = solid_velocity(c.hs, S[2 * n + k], p->h_dry, dp->film_h);
   c.us = dir == 0 ? us : vs;
   c.vs = dir == 0 ? vs : us;
   c.hf = hf[k];
@@ -124,26 +125,35 @@ inline Face solid_face(int m_in, SolidSide m, int p_in, SolidSide p, int kind, i
 }
 
 /// Exact relaxation of the phase velocities by drag with virtual mass over ds (momentum-conserving):
-/// dw/dt = -lambda |w|^(j-1) w for w = u_f - u_s, lambda = rho_s H C (1/m_s + 1/m_f) /
-/// (1 + m_vm (1/m_s + 1/m_f)), m_s = rho_s h_s, m_f = rho_f h_f, m_vm = C_vm rho_f h_s,
-/// C_vm = (1 + 2 alpha_s) / (2 alpha_f) (OpenLISEM Hazard P.35 with alpha_u = alpha_f in grid mode).
+/// dw/dt = -lambda |w|^(j-1) w for the vector w = u_f - u_s (its direction is kept, so the quadratic
+/// law is isotropic), lambda = rho_s H C (1/m_s + 1/m_f) / (1 + m_vm (1/m_s + 1/m_f)),
+/// m_s = rho_s h_s, m_f = rho_f h_f, m_vm = C_vm rho_f h_s, C_vm = (1 + 2 alpha_s) / (2 alpha_f)
+/// (OpenLISEM Hazard P.35 with alpha_u = alpha_f in grid mode). A solid that friction holds
+/// (`held`) cannot be moved by the fluid within the step: the bed takes the reaction, and only the
+/// fluid relaxes towards rest with 1/m_s = 0 in lambda.
 inline void drag_relax(__constant const DebrisParams* dp, Material mat, real hs, real hf, real* qs, real* qf,
-                       real ds) {
+                       real ds, int held) {
   const real H = hs + hf, as = hs / H, af = hf / H;
   const real ms = mat.rho_s * hs, mf = dp->rho_f * hf;
-  const real inv = (real)1 / ms + (real)1 / mf;
+  const real inv = (held ? (real)0 : (real)1 / ms) + (real)1 / mf;
   const real mvm = dp->virtual_mass ? (real)0.5 * ((real)1 + (real)2 * as) / af * dp->rho_f * hs : (real)0;
   const real C = drag_coefficient(dp, as, mat.rho_s, mat.d);
   const real lambda = mat.rho_s * H * C * inv / ((real)1 + mvm * inv);
-  for (int c = 0; c < 2; ++c) {
-    const real us = qs[c] / hs, uf = qf[c] / hf;
-    const real P = ms * us + mf * uf;
-    const real w = uf - us;
-    const real w1 = dp->drag_law == DRAG_QUADRATIC ? w / ((real)1 + lambda * fabs(w) * ds) : w * exp(-lambda * ds);
-    const real us1 = (P - mf * w1) / (ms + mf);
-    qs[c] = hs * us1;
-    qf[c] = hf * (us1 + w1);
+  const real usx = qs[0] / hs, usy = qs[1] / hs;
+  const real wx = qf[0] / hf - usx, wy = qf[1] / hf - usy;
+  const real w = sqrt(wx * wx + wy * wy);
+  const real factor = dp->drag_law == DRAG_QUADRATIC ? (real)1 / ((real)1 + lambda * w * ds) : exp(-lambda * ds);
+  if (held) {
+    qf[0] = hf * wx * factor;
+    qf[1] = hf * wy * factor;
+    return;
   }
+  const real Px = ms * usx + mf * (usx + wx), Py = ms * usy + mf * (usy + wy);
+  const real ux = (Px - mf * wx * factor) / (ms + mf), uy = (Py - mf * wy * factor) / (ms + mf);
+  qs[0] = hs * ux;
+  qs[1] = hs * uy;
+  qf[0] = hf * (ux + wx * factor);
+  qf[1] = hf * (uy + wy * factor);
 }
 
 __kernel void debris_stage(__constant const FlowParams* p, __constant const DebrisParams* dp,
@@ -173,19 +183,19 @@ __kernel void debris_stage(__constant const FlowParams* p, __constant const Debr
     const int m_in = cell_inside(p, mask, i - di, j - dj), p_in = cell_inside(p, mask, i + di, j + dj);
     const int km = m_in ? cell_index(p, i - di, j - dj) : k, kp = p_in ? cell_index(p, i + di, j + dj) : k;
     // Reconstructions of this cell and of its two neighbours along dir (each from its own neighbours).
-    const Prim2 c0 = load_prim2(p, S_st, hf_st, qfx_st, qfy_st, b, k, n, dir);
-    const Prim2 cm = load_prim2(p, S_st, hf_st, qfx_st, qfy_st, b, km, n, dir);
-    const Prim2 cp = load_prim2(p, S_st, hf_st, qfx_st, qfy_st, b, kp, n, dir);
+    const Prim2 c0 = load_prim2(p, dp, S_st, hf_st, qfx_st, qfy_st, b, k, n, dir);
+    const Prim2 cm = load_prim2(p, dp, S_st, hf_st, qfx_st, qfy_st, b, km, n, dir);
+    const Prim2 cp = load_prim2(p, dp, S_st, hf_st, qfx_st, qfy_st, b, kp, n, dir);
     const Faces2 own = reconstruct2(cm, m_in, c0, cp, p_in);
     Faces2 fm_cell = own, fp_cell = own;
     if (m_in) {
       const int mm_in = cell_inside(p, mask, i - 2 * di, j - 2 * dj);
-      const Prim2 cmm = mm_in ? load_prim2(p, S_st, hf_st, qfx_st, qfy_st, b, cell_index(p, i - 2 * di, j - 2 * dj), n, dir) : cm;
+      const Prim2 cmm = mm_in ? load_prim2(p, dp, S_st, hf_st, qfx_st, qfy_st, b, cell_index(p, i - 2 * di, j - 2 * dj), n, dir) : cm;
       fm_cell = reconstruct2(cmm, mm_in, cm, c0, 1);
     }
     if (p_in) {
       const int pp_in = cell_inside(p, mask, i + 2 * di, j + 2 * dj);
-      const Prim2 cpp = pp_in ? load_prim2(p, S_st, hf_st, qfx_st, qfy_st, b, cell_index(p, i + 2 * di, j + 2 * dj), n, dir) : cp;
+      const Prim2 cpp = pp_in ? load_prim2(p, dp, S_st, hf_st, qfx_st, qfy_st, b, cell_index(p, i + 2 * di, j + 2 * dj), n, dir) : cp;
       fp_cell = reconstruct2(c0, 1, cp, cpp, pp_in);
     }
     const int kind_m = boundary_kind(p, i - di, j - dj), kind_p = boundary_kind(p, i + di, j + dj);
@@ -231,11 +241,15 @@ __kernel void debris_stage(__constant const FlowParams* p, __constant const Debr
       if (dg != (real)0 && m_in && p_in) sf -= dg * c0.hf * (real)0.5 * (b[kp] - b[km]);
     }
     // Solid normal momentum: lateral pressure, bed slope with g_n, buoyancy from the mixture thickness.
+    // The bed and buoyancy forces use the cell-centre gradients of b and H (centred, one-sided next
+    // to the domain edge): independent of the reconstruction, so a cell at the edge of a solid mass
+    // (first order there) or at a bed kink feels the true slope; the face terms carry only the
+    // pressure, with the hydrostatic reconstruction keeping solids from climbing bed steps.
     real ss = (Sp.fqn + Sp.p + Sp.corr_m) - (Sm.fqn + Sm.p + Sm.corr_p);
     if (c0.hs > (real)0) {
-      const real hmean = (real)0.5 * (own.lo.hs + own.hi.hs);
-      ss += gnk * hmean * ((own.hi.es - own.hi.hs) - (own.lo.es - own.lo.hs));
-      ss += mc.gamma * g * hmean * ((own.hi.hs + own.hi.hf) - (own.lo.hs + own.lo.hf));
+      const real span = (m_in && p_in) ? (real)0.5 : (real)1;
+      ss += gnk * c0.hs * span * (b[kp] - b[km]);
+      ss += mc.gamma * g * c0.hs * span * ((cp.hs + cp.hf) - (cm.hs + cm.hf));
     }
     norm_f[dir] = sf;
     norm_s[dir] = ss;
@@ -271,10 +285,11 @@ __kernel void debris_stage(__constant const FlowParams* p, __constant const Debr
     qf[0] = a * qfx_base[k] + ((real)1 - a) * qf[0];
     qf[1] = a * qfy_base[k] + ((real)1 - a) * qf[1];
   }
-  real qs[2] = {Sn[1], Sn[2]};
   const real hsn = fmax(Sn[0], (real)0);
   hfn = fmax(hfn, (real)0);
-  if (hsn <= p->h_dry) qs[0] = qs[1] = 0;
+  // Solid momentum consistent with the desingularised velocity (zero below the dry threshold).
+  real qs[2] = {hsn * solid_velocity(hsn, Sn[1], p->h_dry, dp->film_h),
+                hsn * solid_velocity(hsn, Sn[2], p->h_dry, dp->film_h)};
   if (hfn <= p->h_dry) qf[0] = qf[1] = 0;
 
   // Stiff sources over ds: drag (with virtual mass), then basal friction of each phase.
@@ -284,7 +299,8 @@ __kernel void debris_stage(__constant const FlowParams* p, __constant const Debr
   mn.d = hsn > p->h_dry ? Sn[5] / hsn : dp->d_default;
   mn.gamma = hfn > p->h_dry ? dp->rho_f / mn.rho_s : (real)0;
   mn.delta = dp->delta_from_phi ? mn.phi : delta[k];
-  if (dp->drag_law != DRAG_OFF && hsn > p->h_dry && hfn > p->h_dry) drag_relax(dp, mn, hsn, hfn, qs, qf, ds);
+  // Coulomb friction first: it decides whether the solids are held; then the drag exchange, in
+  // which held solids stay at rest (the bed takes the reaction).
   uchar locked = 1;
   if (hsn > p->h_dry) {
     const real qn = sqrt(qs[0] * qs[0] + qs[1] * qs[1]);
@@ -298,6 +314,8 @@ __kernel void debris_stage(__constant const FlowParams* p, __constant const Debr
       locked = 0;
     }
   }
+  if (dp->drag_law != DRAG_OFF && hsn > p->h_dry && hfn > p->h_dry)
+    drag_relax(dp, mn, hsn, hfn, qs, qf, ds, locked);
   if (hfn > p->h_dry && manning[k] > (real)0) {
     const real uf = qf[0] / hfn, vf = qf[1] / hfn;
     const real n2 = manning[k] * manning[k];

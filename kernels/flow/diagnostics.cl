@@ -1,5 +1,8 @@
 // Per-tile diagnostics in one pass over the active tiles, one work-group per tile: the CFL wave
-// speed max over cells of (|u| + c) + (|v| + c) with c = sqrt(g_p h), the volume, the outflow of the
+// speed max over wet cells of (|u| + c + w) + (|v| + c + w) with c = sqrt(g h) (g >= g_p of any face)
+// and w = sqrt(g |grad b| dx), the speed the bed slope gives water over one cell (without it a thin
+// film at rest on a slope, whose c is tiny, would get a step in which gravity accelerates it far
+// past the CFL limit); the volume, the outflow of the
 // last step, the kinetic energy per unit density, the smallest thickness and whether the tile holds
 // any water. Partials are stored at the tile's position in the active list (rows of length ntiles),
 // so the host reduces the first `count` entries of each row; the list is in ascending tile order,
@@ -49,7 +52,7 @@ inline void reduce_tile(__local real* s, __local int* s_wet, int rows, int lid, 
 __kernel __attribute__((reqd_work_group_size(TILE, TILE, 1)))
 void flow_tile_diagnostics(__constant const FlowParams* p, __global const uchar* mask, __global const int* tile_list,
                            __global const real* h, __global const real* qx, __global const real* qy,
-                           __global const real* gp, __global const real* out_step, __global real* partial,
+                           __global const real* slope_speed, __global const real* out_step, __global real* partial,
                            __global int* tile_wet) {
   __local real s[5 * TILE_CELLS];
   __local int s_wet[TILE_CELLS];
@@ -62,9 +65,10 @@ void flow_tile_diagnostics(__constant const FlowParams* p, __global const uchar*
     const int k = cell_index(p, i, j);
     const real hk = h[k];
     const real u = velocity(hk, qx[k], p->h_dry), v = velocity(hk, qy[k], p->h_dry);
-    const real cw = sqrt(gp[k] * fmax(hk, (real)0));
+    // Wave speed with the largest g a face can use, plus the speed the bed slope adds (see header).
+    const real cw = sqrt(GRAVITY * fmax(hk, (real)0));
     const real area = p->dx * p->dx;
-    speed = hk > (real)0 ? fabs(u) + fabs(v) + (real)2 * cw : (real)0;
+    speed = hk > (real)0 ? fabs(u) + fabs(v) + (real)2 * (cw + slope_speed[k]) : (real)0;
     vol = hk * area;
     out = out_step[k];
     ke = (real)0.5 * hk * (u * u + v * v) * area;

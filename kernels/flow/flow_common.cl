@@ -109,11 +109,15 @@ inline Prim load_prim(__constant const FlowParams* p, __global const real* h, __
 
 /// MUSCL reconstruction of cell C from its neighbours M (minus side) and P (plus side) along the
 /// direction. A neighbour outside the domain gives a zero slope (first order next to boundaries),
-/// which is also what the limiter returns for a mirrored ghost cell's thickness and surface.
+/// which is also what the limiter returns for a mirrored ghost cell's thickness and surface; so does
+/// a dry cell or a dry neighbour (first order at wet/dry fronts).
 inline CellFaces reconstruct(Prim m, int m_in, Prim c, Prim pl, int p_in) {
   CellFaces f;
   real sh = 0, se = 0, su = 0, sv = 0;
-  if (m_in && p_in) {
+  // First order at wet/dry fronts (a dry cell or a dry neighbour): on steep slopes a limited surface
+  // slope in a dry cell can put its face bed above a wet neighbour's surface, which would block the
+  // flow while the bed source keeps accelerating the water in place (found by the stress suite).
+  if (m_in && p_in && m.h > (real)0 && c.h > (real)0 && pl.h > (real)0) {
     sh = limited_slope(c.h - m.h, pl.h - c.h);
     se = limited_slope(c.e - m.e, pl.e - c.e);
     su = limited_slope(c.un - m.un, pl.un - c.un);

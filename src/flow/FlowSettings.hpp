@@ -28,6 +28,7 @@ struct DebrisSettings {
   double viscB = 10.0;           ///< O'Brien-Julien b [-]
   bool virtualMass = true;
   bool deltaFromPhi = true;      ///< bed friction angle = internal friction angle
+  double filmThickness = 1e-4;   ///< [m] solid films thinner than this get desingularised velocities
 };
 
 struct FlowSettings {

@@ -55,6 +55,7 @@ FlowSolver::FlowSolver(compute::Context& ctx, const Grid& grid, const FlowSettin
       gp_(ctx, grid.cells(), "g_p"),
       gn_(ctx, grid.cells(), "g_n"),
       manning_(ctx, grid.cells(), "manning"),
+      slopeSpeed_(ctx, grid.cells(), "slope speed"),
       h_(ctx, grid.cells(), "h"),
       qx_(ctx, grid.cells(), "qx"),
       qy_(ctx, grid.cells(), "qy"),
@@ -68,7 +69,7 @@ FlowSolver::FlowSolver(compute::Context& ctx, const Grid& grid, const FlowSettin
       arrival_(ctx, grid.cells(), "arrival"),
       reducer_(ctx) {
   if (grid.nx < 1 || grid.ny < 1 || !(grid.dx > 0)) throw InputError("flow solver needs a grid of at least 1x1 cells");
-  if (!(settings.cfl > 0 && settings.cfl <= 1)) throw InputError("CFL must lie in (0, 1]");
+  if (!(settings.cfl > 0 && settings.cfl <= 0.5)) throw InputError("CFL must lie in (0, 0.5] (positivity)");
   const std::string opts = buildOptions(settings);
   stage_ = compute::Kernel(ctx.program("flow/stage.cl", opts), "flow_stage");
   friction_ = compute::Kernel(ctx.program("flow/friction.cl", opts), "flow_friction");
@@ -105,6 +106,7 @@ void FlowSolver::setInput(const FlowInput& in, double startTime) {
   const SlopeGravity sg = computeSlopeGravity(grid_, bed, in.mask, settings_);
   gp_.upload(sg.gp);
   gn_.upload(sg.gn);
+  slopeSpeed_.upload(sg.slopeSpeed);
   h_.upload(h);
   // Momentum of dry and outside cells is discarded, as the update does after every stage.
   auto momentum = [&](const std::vector<double>& q, const char* what) {
@@ -193,7 +195,7 @@ void FlowSolver::computeDiagnostics() {
       ops.push_back(ReduceOp::Sum);
       ops.push_back(ReduceOp::Sum);
     } else {
-      diagnostics_.bind(params_, mask_, tileList_, h_, qx_, qy_, gp_, outStep_, partial_, tileWet_);
+      diagnostics_.bind(params_, mask_, tileList_, h_, qx_, qy_, slopeSpeed_, outStep_, partial_, tileWet_);
       diagnostics_.launch(tileRange(), kLocal2D);
     }
     const std::vector<double> r = reducer_.reduceRows(partial_, static_cast<std::size_t>(activeTiles_), ops, ntiles);

@@ -119,7 +119,7 @@ class FlowSolver {
   compute::Buffer<int> tileActive_, tileWet_, tileList_, tileCount_;
   int activeTiles_ = 0;
   bool hasFriction_ = true;  ///< false when Manning's n is zero everywhere: friction is not launched
-  compute::RealBuffer bed_, gp_, gn_, manning_;
+  compute::RealBuffer bed_, gp_, gn_, manning_, slopeSpeed_;
   compute::RealBuffer h_, qx_, qy_, h1_, qx1_, qy1_;
   compute::RealBuffer outStep_, partial_;
   compute::RealBuffer hMax_, vMax_, arrival_;

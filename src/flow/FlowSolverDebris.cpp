@@ -39,6 +39,7 @@ void writeDebrisParams(compute::RawBuffer& buf, const DebrisSettings& d) {
   p.phiDefault = static_cast<Real>(kDefaultPhi);
   p.rhoSDefault = static_cast<Real>(kDefaultRhoS);
   p.dDefault = static_cast<Real>(kDefaultGrain);
+  p.filmH = static_cast<Real>(d.filmThickness);
   buf.writeBytes(&p, sizeof p);
 }
 
@@ -130,7 +131,7 @@ void FlowSolver::enqueueDebrisTrack() {
 }
 
 void FlowSolver::enqueueDebrisDiagnostics() {
-  debrisDiagnostics_.bind(params_, debrisParams_, mask_, tileList_, solid0_, h_, qx_, qy_, gp_, delta_, outStep_,
+  debrisDiagnostics_.bind(params_, debrisParams_, mask_, tileList_, solid0_, h_, qx_, qy_, slopeSpeed_, delta_, outStep_,
                           partial_, tileWet_);
   debrisDiagnostics_.launch(tileRange(), kLocal2D);
 }

@@ -1,5 +1,8 @@
 #include "flow/SlopeGravity.hpp"
 
+#include <algorithm>
+#include <cmath>
+
 #include "core/Constants.hpp"
 
 namespace talus::flow {
@@ -24,13 +27,23 @@ SlopeGravity computeSlopeGravity(const Grid& grid, const std::vector<double>& be
   SlopeGravity s;
   s.gn.assign(grid.cells(), kGravity);
   s.gp.assign(grid.cells(), kGravity);
-  if (!settings.slopeCorrection) return s;
+  s.slopeSpeed.assign(grid.cells(), 0.0);
   for (int j = 0; j < grid.ny; ++j)
     for (int i = 0; i < grid.nx; ++i) {
       const std::size_t k = grid.index(i, j);
       if (!mask[k]) continue;
       const double bx = gradient(grid, bed, mask, i, j, 1, 0), by = gradient(grid, bed, mask, i, j, 0, 1);
-      const double cos2 = 1.0 / (1.0 + bx * bx + by * by);
+      // The steeper of the centred and the two one-sided differences bounds the local slope.
+      double steepest = std::hypot(bx, by);
+      for (int d = 0; d < 2; ++d)
+        for (int sgn = -1; sgn <= 1; sgn += 2) {
+          const int a = i + (d == 0 ? sgn : 0), b = j + (d == 1 ? sgn : 0);
+          if (a >= 0 && b >= 0 && a < grid.nx && b < grid.ny && mask[grid.index(a, b)])
+            steepest = std::max(steepest, std::fabs(bed[grid.index(a, b)] - bed[k]) / grid.dx);
+        }
+      s.slopeSpeed[k] = std::sqrt(kGravity * steepest * grid.dx);
+      if (!settings.slopeCorrection) continue;
+      const double cos2 = 1.0 / (1.0 + (bx * bx + by * by));  // grouped: x<->y symmetric bitwise
       s.gn[k] = kGravity * cos2;
       s.gp[k] = settings.depthPressure == DepthPressure::Cos4 ? kGravity * cos2 * cos2 : s.gn[k];
     }

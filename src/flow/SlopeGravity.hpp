@@ -14,6 +14,9 @@ namespace talus::flow {
 struct SlopeGravity {
   std::vector<double> gn;  ///< [m/s^2]
   std::vector<double> gp;  ///< [m/s^2]
+  /// sqrt(g |grad b| dx) [m/s]: the speed water at rest gains from the bed slope over one cell,
+  /// added to the CFL speed of wet cells so thin films on slopes cannot outrun the time step.
+  std::vector<double> slopeSpeed;
 };
 
 SlopeGravity computeSlopeGravity(const Grid& grid, const std::vector<double>& bed, const std::vector<uint8_t>& mask,

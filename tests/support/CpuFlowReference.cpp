@@ -32,6 +32,7 @@ CpuFlowReference::CpuFlowReference(const Grid& grid, const flow::FlowSettings& s
     if (h_[k] <= settings_.hDry) qx_[k] = 0.0, qy_[k] = 0.0;
   const flow::SlopeGravity sg = flow::computeSlopeGravity(grid, bed_, in.mask, settings);
   gn_ = sg.gn;
+  slope_ = sg.slopeSpeed;
   gp_ = sg.gp;
   hMax_ = h_;
   vMax_.assign(n, 0.0);
@@ -71,9 +72,11 @@ CpuFlowReference::Prim CpuFlowReference::prim(const State& s, int i, int j, int 
 CpuFlowReference::Faces CpuFlowReference::reconstruct(const State& s, int i, int j, int dir) const {
   const int di = dir == 0 ? 1 : 0, dj = 1 - di;
   const Prim c = prim(s, i, j, dir);
-  double dh = 0, de = 0, dun = 0, dut = 0;  // limited slopes, zero next to outside cells
-  if (inside(i - di, j - dj) && inside(i + di, j + dj)) {
-    const Prim m = prim(s, i - di, j - dj, dir), p = prim(s, i + di, j + dj, dir);
+  // Limited slopes; zero next to outside cells and at wet/dry fronts (the cell or a neighbour dry).
+  double dh = 0, de = 0, dun = 0, dut = 0;
+  const bool bothInside = inside(i - di, j - dj) && inside(i + di, j + dj);
+  const Prim m = bothInside ? prim(s, i - di, j - dj, dir) : c, p = bothInside ? prim(s, i + di, j + dj, dir) : c;
+  if (bothInside && m.h > 0.0 && c.h > 0.0 && p.h > 0.0) {
     dh = limiter(c.h - m.h, p.h - c.h);
     de = limiter(c.eta - m.eta, p.eta - c.eta);
     dun = limiter(c.un - m.un, p.un - c.un);
@@ -255,7 +258,8 @@ void CpuFlowReference::computeDiagnostics(double outflowVolume) {
   for (std::size_t k = 0; k < grid_.cells(); ++k) {
     if (!mask_[k]) continue;
     const double h = h_[k], u = velocity(h, qx_[k]), v = velocity(h, qy_[k]);
-    if (h > 0.0) diag_.maxSpeed = std::max(diag_.maxSpeed, std::fabs(u) + std::fabs(v) + 2.0 * std::sqrt(gp_[k] * h));
+    if (h > 0.0)
+      diag_.maxSpeed = std::max(diag_.maxSpeed, std::fabs(u) + std::fabs(v) + 2.0 * (std::sqrt(kGravity * h) + slope_[k]));
     diag_.volume += h * area;
     diag_.kinetic += 0.5 * h * (u * u + v * v) * area;
     diag_.minH = std::min(diag_.minH, h);

@@ -88,7 +88,7 @@ class CpuFlowReference {
   Grid grid_;
   flow::FlowSettings settings_;
   std::vector<unsigned char> mask_;
-  std::vector<double> bed_, manning_, gn_, gp_;
+  std::vector<double> bed_, manning_, gn_, gp_, slope_;  // slope_: bed-slope CFL speed
   std::vector<double> h_, qx_, qy_, hMax_, vMax_, arrival_;
   double time_ = 0;
   double clampedVolume_ = 0;
