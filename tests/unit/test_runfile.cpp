@@ -186,7 +186,7 @@ TEST_F(RunFile, BadNumbers) {
 TEST_F(RunFile, ValueOutOfRangeStatesRangeAndUnit) {
   const std::string msg = errorOf("DEM=1\nCFL=2\n");
   EXPECT_TRUE(contains(msg, "case.run:2: key 'CFL'")) << msg;
-  EXPECT_TRUE(contains(msg, "[0.01, 1]")) << msg;
+  EXPECT_TRUE(contains(msg, "[0.01, 0.5]")) << msg;
   const std::string h = errorOf("DEM=1\nInitial Fluid Height=-1\n");
   EXPECT_TRUE(contains(h, "case.run:2: key 'Initial Fluid Height'")) << h;
   EXPECT_TRUE(contains(h, "[0, 10000] m")) << h;
@@ -304,8 +304,8 @@ TEST_F(RunFile, EchoRoundTripsToIdenticalValues) {
 
 TEST_F(RunFile, SetOverridesAndValidates) {
   RunConfig c = RunConfig::fromText("DEM=1\nCFL=0.4\n", dir(), talusRunKeys());
-  c.set("cfl = 0.9");
-  EXPECT_DOUBLE_EQ(c.real("CFL"), 0.9);
+  c.set("cfl = 0.3");
+  EXPECT_DOUBLE_EQ(c.real("CFL"), 0.3);
   EXPECT_EQ(c.origin("CFL"), "command line");
   c.set("Limiter=MC");
   EXPECT_EQ(c.choice("Limiter"), "mc");
@@ -324,8 +324,8 @@ TEST_F(RunFile, SetOverridesAndValidates) {
   };
   const std::string range = messageOf("CFL=5");
   EXPECT_TRUE(contains(range, "command line --set: key 'CFL'")) << range;
-  EXPECT_TRUE(contains(range, "[0.01, 1]")) << range;
-  EXPECT_DOUBLE_EQ(c.real("CFL"), 0.9);  // unchanged after a rejected override
+  EXPECT_TRUE(contains(range, "[0.01, 0.5]")) << range;
+  EXPECT_DOUBLE_EQ(c.real("CFL"), 0.3);  // unchanged after a rejected override
   EXPECT_TRUE(contains(messageOf("Maning=0.1"), "did you mean 'Manning'"));
   EXPECT_TRUE(contains(messageOf("CFL"), "command line --set"));
   EXPECT_TRUE(contains(messageOf("DEM=missing.tif"), "command line --set: key 'DEM'"));
@@ -363,7 +363,7 @@ TEST_F(RunFile, RegistryIntegerKeysRulesAndTable) {
   EXPECT_EQ(table, talus::io::describeKeys(talusRunKeys()));
   EXPECT_TRUE(contains(table, "### Numerics")) << table;
   EXPECT_TRUE(contains(table, "| `DEM` | map | (required) | m |")) << table;
-  EXPECT_TRUE(contains(table, "| `CFL` | real | 0.5 | - | [0.01, 1] |")) << table;
+  EXPECT_TRUE(contains(table, "| `CFL` | real | 0.5 | - | [0.01, 0.5] |")) << table;
   for (const char* name : {"Map Directory", "DEM", "Include Initial Water", "Initial Fluid Height", "Manning",
                            "Start Time", "End Time", "Timestep", "CFL", "Limiter", "Riemann Solver", "Precision",
                            "Device", "Boundary Type", "Nodata Boundary Type", "Slope Correction",
