@@ -17,6 +17,9 @@ packages=(
   libgtest-dev googletest xvfb xauth
   # scene tools (tools/make_example_scene.py)
   python3 python3-numpy python3-gdal
+  # fuzzing (tools/fuzz.sh): clang with libFuzzer and the sanitizer runtimes; llvm-symbolizer
+  # (llvm-14) for readable sanitizer reports
+  clang-14 libclang-rt-14-dev llvm-14
 )
 
 missing=()

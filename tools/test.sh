@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
-# Sets up, builds and runs the whole test suite (labels unit, kernels, verification) on the
-# available OpenCL device (PoCL's CPU device on a machine without a GPU).
+# Sets up, builds and runs the whole test suite (labels unit, kernels, verification, stress) on the
+# available OpenCL device (PoCL's CPU device on a machine without a GPU). With full checks on (in CI,
+# CI=true, or TALUS_FULL_CHECKS=1) it then also runs the suite under ASan/UBSan (tools/sanitize.sh)
+# and each fuzz target for 45 s (tools/fuzz.sh 45); TALUS_FULL_CHECKS=0 turns them off.
 # Exits non-zero when any step or any test fails.
 # Environment: TALUS_BUILD_DIR (default build), TALUS_TEST_JOBS (parallel ctest jobs, default 1),
-# TALUS_DEVICE (device selection, passed through to the tests).
+# TALUS_DEVICE (device selection, passed through to the tests), TALUS_FULL_CHECKS.
 set -euo pipefail
 
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -29,10 +31,30 @@ fi
 
 rc=0
 ctest --test-dir "$build_dir" --output-on-failure --no-tests=error --timeout 900 \
-  -j "${TALUS_TEST_JOBS:-1}" -L 'unit|kernels|verification' || rc=$?
+  -j "${TALUS_TEST_JOBS:-1}" -L 'unit|kernels|verification|stress' || rc=$?
 
 if (( rc != 0 )); then
   echo "test: FAILED (ctest exit status $rc)" >&2
   exit "$rc"
 fi
 echo "test: all tests passed"
+
+full=${TALUS_FULL_CHECKS:-}
+if [[ -z "$full" && "${CI:-}" == "true" ]]; then full=1; fi
+if [[ "$full" != "1" ]]; then
+  exit 0
+fi
+
+# Full checks: sanitizers, then a bounded fuzzing run. Both run even when the first fails.
+failed=()
+step_start=$(date +%s)
+bash tools/sanitize.sh || failed+=("sanitize")
+echo "test: sanitize.sh took $(( $(date +%s) - step_start )) s"
+step_start=$(date +%s)
+bash tools/fuzz.sh 45 || failed+=("fuzz")
+echo "test: fuzz.sh took $(( $(date +%s) - step_start )) s"
+if (( ${#failed[@]} > 0 )); then
+  echo "test: FAILED full checks: ${failed[*]}" >&2
+  exit 1
+fi
+echo "test: sanitizer and fuzz checks passed"

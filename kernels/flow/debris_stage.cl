@@ -95,7 +95,9 @@ typedef struct {
 } SolidSide;
 
 /// Solid flux through a face (conventions of face_between in riemann.cl); the pressure part is
-/// dimensional (h* Pi). `locked`: no solid mass crosses (both sides static or empty).
+/// dimensional (h* Pi) and shared by both cells. `locked`: no solid mass crosses (both sides static
+/// or empty). The hydrostatic reconstruction (h* over the higher face bed) keeps solids from
+/// climbing bed steps higher than their surface.
 inline Face solid_face(int m_in, SolidSide m, int p_in, SolidSide p, int kind, int locked) {
   Face f = {0, 0, 0, 0, 0, 0};
   if (!m_in && !p_in) return f;
@@ -119,8 +121,9 @@ inline Face solid_face(int m_in, SolidSide m, int p_in, SolidSide p, int kind, i
     f.fqt = (wall || locked) ? (real)0 : r.fqt;
     f.p = r.p;
   }
-  f.corr_m = (m.h - hm) * m.pi;
-  f.corr_p = (p.h - hp) * p.pi;
+  // No hydrostatic corrections: the solids' bed force is the cell-centre gradient (see the stage),
+  // so the face pressure must be the one both cells share (momentum-conserving); adding each side's
+  // (h - h*) Pi would push every cell of a steep staircase downhill a second time.
   return f;
 }
 

@@ -223,6 +223,14 @@ Raster readRaster(const std::string& path) {
   if (height < 0.0) {
     throw InputError("raster '" + path + "' is south-up (positive pixel height), which is not supported");
   }
+  // Cells from a millimetre to a thousand kilometres: outside that the cell area under- or
+  // overflows, or the grid is surely a unit mistake (degrees for metres, say).
+  if (width < 1e-3 || width > 1e6) {
+    std::ostringstream s;
+    s << "raster '" << path << "' has a cell size of " << width << " m, outside [0.001, 1e6] m "
+      << "(a projected grid in metres is needed)";
+    throw InputError(s.str());
+  }
   if (std::fabs(width - height) > 1e-7 * std::max(width, height)) {
     std::ostringstream s;
     s.precision(12);
@@ -238,6 +246,25 @@ Raster readRaster(const std::string& path) {
   r.grid.geoTransform = gt;
   const char* wkt = ds->GetProjectionRef();
   r.grid.projectionWkt = wkt != nullptr ? wkt : "";
+  GDALRasterBand* band = ds->GetRasterBand(1);
+  {
+    // Check that the data can exist before allocating the grid: a short file whose header claims a
+    // huge grid then fails here instead of after gigabytes were allocated and zero-filled. ASCII
+    // grids need at least two bytes a cell; other formats (random access) must yield their last row.
+    const std::string driver = ds->GetDriver() ? ds->GetDriver()->GetDescription() : "";
+    std::error_code ec;
+    const auto bytes = std::filesystem::file_size(path, ec);
+    if (driver == "AAIGrid" && !ec && bytes < 2 * cells)
+      throw InputError("raster '" + path + "' is truncated: its header claims " + std::to_string(nx) + "x" +
+                       std::to_string(ny) + " cells but the file has only " + std::to_string(bytes) + " bytes");
+    if (driver != "AAIGrid") {
+      std::vector<double> lastRow(static_cast<std::size_t>(nx));
+      if (band->RasterIO(GF_Read, 0, ny - 1, nx, 1, lastRow.data(), nx, 1, GDT_Float64, 0, 0, nullptr) != CE_None ||
+          errors.failed())
+        throw InputError("cannot read the data of raster '" + path + "' (truncated or corrupt?): " +
+                         errors.describe("GDAL read error"));
+    }
+  }
   try {
     r.values.resize(cells);
     r.valid.assign(cells, 1);
@@ -245,7 +272,6 @@ Raster readRaster(const std::string& path) {
     throw InputError("raster '" + path + "' is too large to load: " + std::to_string(cells) + " cells");
   }
 
-  GDALRasterBand* band = ds->GetRasterBand(1);
   if (band->RasterIO(GF_Read, 0, 0, nx, ny, r.values.data(), nx, ny, GDT_Float64, 0, 0, nullptr) !=
           CE_None ||
       errors.failed()) {

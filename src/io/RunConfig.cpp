@@ -2,6 +2,8 @@
 // paths resolved, every problem reported with file, line and key; echo() writes the resolved setup.
 #include "io/RunConfig.hpp"
 
+#include <cstdio>
+
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
@@ -100,11 +102,29 @@ std::string didYouMean(const KeyRegistry& keys, const std::string& name) {
   return s + "?";
 }
 
+/// The message with control bytes of the run-file escaped (\0, \xNN): an embedded NUL would cut
+/// the C string of what() short, and terminal escape sequences must not reach the terminal.
+std::string printable(const std::string& text) {
+  std::string out;
+  for (unsigned char c : text) {
+    if (c == 0) {
+      out += "\\0";
+    } else if ((c < 0x20 && c != '\t') || c == 0x7f) {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\x%02x", c);
+      out += buf;
+    } else {
+      out += static_cast<char>(c);
+    }
+  }
+  return out;
+}
+
 std::string joinLines(std::vector<std::pair<long, std::string>> errors) {
   std::stable_sort(errors.begin(), errors.end(),
                    [](const auto& a, const auto& b) { return a.first < b.first; });
   std::string out;
-  for (const auto& e : errors) out += (out.empty() ? "" : "\n") + e.second;
+  for (const auto& e : errors) out += (out.empty() ? "" : "\n") + printable(e.second);
   return out;
 }
 
@@ -186,10 +206,10 @@ void RunConfig::set(const std::string& assignment) {
   const std::string t = trim(assignment);
   const std::size_t eq = t.find('=');
   if (eq == std::string::npos)
-    throw InputError(where + ": key '" + t + "': no '=' in '" + t + "'; expected Key=Value[=Multiplier]");
+    throw InputError(printable(where + ": key '" + t + "': no '=' in '" + t + "'; expected Key=Value[=Multiplier]"));
   const std::string name = trim(t.substr(0, eq));
   const int idx = registry_.indexOf(name);
-  if (idx < 0) throw InputError(where + ": key '" + name + "': unknown key" + didYouMean(registry_, name));
+  if (idx < 0) throw InputError(printable(where + ": key '" + name + "': unknown key" + didYouMean(registry_, name)));
   RunConfig updated = *this;
   Entry& e = updated.entries_[static_cast<std::size_t>(idx)];
   e = Entry{};

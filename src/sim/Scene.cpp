@@ -63,6 +63,14 @@ Scene loadScene(const io::RunConfig& cfg) {
   s.dem = io::readRaster(demKey.file);
   if (demKey.multiplier != 1.0)
     for (double& v : s.dem.values) v *= demKey.multiplier;
+  // Elevations must be finite and representable in single precision (the kernels may run in float).
+  for (int j = 0; j < s.dem.grid.ny; ++j)
+    for (int i = 0; i < s.dem.grid.nx; ++i) {
+      const double z = s.dem.at(i, j);
+      if (s.dem.isValid(i, j) && !(std::fabs(z) < 1e30))
+        throw InputError("DEM '" + demKey.file + "' (times its multiplier " + std::to_string(demKey.multiplier) +
+                         ") has elevation " + std::to_string(z) + " at " + cellText(s.dem.grid, i, j));
+    }
   std::size_t inside = 0;
   for (uint8_t v : s.dem.valid) inside += v;
   if (inside == 0) throw InputError("DEM '" + demKey.file + "' has no valid cells");
