@@ -94,6 +94,42 @@ void benchWet(const std::string& device, compute::Precision prec, int size, int 
   std::printf("%s\n", ctx->profiler().report().c_str());
 }
 
+/// The two-phase step on a fully wet grid (solids and fluid everywhere), with the optional exchange
+/// terms switched one by one, so each term's cost shows.
+void benchTwoPhase(const std::string& device, compute::Precision prec, int size, int steps) {
+  auto ctx = compute::Context::create(device, prec);
+  const Grid g = Grid::make(size, size, 1.0);
+  flow::FlowInput in = wetScene(g);
+  in.hs.resize(g.cells());
+  for (std::size_t k = 0; k < g.cells(); ++k) {
+    in.hs[k] = 0.5 * in.h[k];
+    in.h[k] *= 0.5;
+  }
+  struct Variant {
+    const char* name;
+    flow::DragLaw drag;
+    bool virtualMass;
+  };
+  const Variant variants[] = {{"drag off", flow::DragLaw::Off, false},
+                              {"linear drag", flow::DragLaw::Linear, false},
+                              {"linear drag + virtual mass", flow::DragLaw::Linear, true},
+                              {"quadratic drag + virtual mass", flow::DragLaw::Quadratic, true}};
+  for (const Variant& v : variants) {
+    flow::FlowSettings settings;
+    settings.edge = flow::Boundary::Wall;
+    settings.twoPhase = true;
+    settings.debris.drag = v.drag;
+    settings.debris.virtualMass = v.virtualMass;
+    flow::FlowSolver solver(*ctx, g, settings);
+    solver.setInput(in);
+    const double seconds = timeSteps(*ctx, solver, steps);
+    const double rate = static_cast<double>(g.cells()) * steps / seconds;
+    std::printf("two-phase %4dx%-4d %-6s %-30s %3d steps  %8.3f s  %10.4g cell-updates/s\n", size, size,
+                compute::precisionName(prec), v.name, steps, seconds, rate);
+  }
+  std::printf("\n");
+}
+
 void benchDryTiles(const std::string& device, int size, int steps) {
   auto ctx = compute::Context::create(device, compute::Precision::Float);
   const Grid g = Grid::make(size, size, 1.0);
@@ -144,6 +180,7 @@ int main(int argc, char** argv) {
         }
       }
     benchDryTiles(device, 2000, steps);
+    for (const std::string& p : precisions) benchTwoPhase(device, compute::parsePrecision(p), 500, std::max(2, steps / 2));
   } catch (const std::exception& e) {
     std::fprintf(stderr, "bench_flow: %s\n", e.what());
     return 1;
