@@ -99,6 +99,7 @@ Knobs knobsFor(StressFamily f) {
       k.pSingle = 0.5, k.pEdge = 0.5, k.pFilm = 0.3, k.pNoise = 0.4, k.pVelocity = 0.5, k.froudeMax = 3.0;
       k.pNodata = 0.5, k.maxBlobs = 8, k.pWetBlob = 0.5, k.pHighBase = 0.3, k.pExtremeManning = 0.5;
       break;
+    case StressFamily::Debris: break;  // not drawn by seed % kStressFamilies (makeDebrisScene)
   }
   return k;
 }
@@ -194,6 +195,7 @@ const char* familyName(StressFamily f) {
     case StressFamily::Nodata: return "Nodata";
     case StressFamily::Friction: return "Friction";
     case StressFamily::Chaos: return "Chaos";
+    case StressFamily::Debris: return "Debris";
   }
   return "?";
 }
@@ -586,7 +588,10 @@ std::string num(double v) {
 
 }  // namespace
 
+StressOutcome runDebrisScene(const StressScene& scene);
+
 StressOutcome runStressScene(const StressScene& scene) {
+  if (scene.settings.twoPhase) return runDebrisScene(scene);
   StressOutcome out;
   const Grid& g = scene.grid;
   const bool dbl = scene.precision == compute::Precision::Double;
@@ -820,6 +825,343 @@ StressOutcome runStressScene(const StressScene& scene) {
                       " or vMax " + num(vMax[k]) + " not finite and >= 0";
         break;
       }
+  }
+  out.wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+
+// ------------------------------------------------------------------------------------------------
+// Two-phase (debris) scenes and their checker
+// ------------------------------------------------------------------------------------------------
+
+uint64_t debrisSeed(uint64_t base, uint64_t index) {
+  // A sequence of its own (a different salt from stressSeed), so the single-phase sequences and
+  // their seed -> scene mapping are untouched.
+  return mix64(mix64(base ^ 0xDEB815F10Dull) ^ (index * 0x9E6C63D0676A9A99ull + 0x51ull));
+}
+
+StressScene makeDebrisScene(uint64_t seed) {
+  Rng r(mix64(seed ^ 0xD0B1E5ull));
+  // The grid, DEM, water, nodata, Manning map, numerics and precision of a single-phase Fractal or
+  // Cliffs scene derived from the seed; the two-phase kernel is ~6x slower per cell, so grids above
+  // 2500 cells are redrawn (at most 16 times: still a pure function of the seed).
+  const StressFamily base = r.chance(0.5) ? StressFamily::Fractal : StressFamily::Cliffs;
+  StressScene sc;
+  for (uint64_t a = 0; a < 16; ++a) {
+    sc = makeStressScene(stressSeed(seed, a, base));
+    if (sc.grid.cells() <= 2500) break;
+  }
+  const uint64_t baseSeed = sc.seed;
+  const std::string baseDescription = sc.description;
+  sc.seed = seed;
+  sc.family = StressFamily::Debris;
+  const Grid& g = sc.grid;
+  const std::size_t n = g.cells();
+  flow::FlowInput& in = sc.input;
+  flow::FlowSettings& s = sc.settings;
+  s.twoPhase = true;
+  flow::DebrisSettings& d = s.debris;
+  std::ostringstream desc;
+  auto deg = [](double v) { return v * kPi / 180.0; };
+
+  // ---- settings
+  d.drag = static_cast<flow::DragLaw>(r.integer(0, 2));
+  {
+    const double u = r.unit();
+    d.dragMultiplier = u < 0.35 ? 1e-3 : u < 0.7 ? 1e6 : r.logUniform(1e-3, 1e6);
+  }
+  d.virtualMass = r.chance(0.5);
+  d.earthPressure = r.chance(0.5) ? flow::EarthPressure::SavageHutter : flow::EarthPressure::Constant;
+  {
+    const double u = r.unit();
+    d.kConst = u < 0.2 ? 0.3 : u < 0.4 ? 3.0 : r.logUniform(0.3, 3.0);
+  }
+  {
+    const double u = r.unit();
+    d.poreB = u < 0.25 ? 0.0 : u < 0.5 ? 1.0 : r.unit();
+  }
+  d.deltaFromPhi = r.chance(0.5);
+  d.fluidDensity = r.chance(0.7) ? 1000.0 : r.uniform(900, 1300);
+
+  // ---- material fields
+  const bool phiField = r.chance(0.4);
+  const double phi0 = r.uniform(10, 45), delta0 = r.uniform(10, 45);
+  in.phi.assign(n, deg(phi0));
+  in.delta.assign(n, deg(delta0));
+  if (phiField)
+    for (std::size_t k = 0; k < n; ++k) in.phi[k] = deg(r.uniform(10, 45)), in.delta[k] = deg(r.uniform(10, 45));
+  double cohesion;
+  {
+    const double u = r.unit();
+    cohesion = u < 0.35 ? 0.0 : u < 0.55 ? 1e6 : r.logUniform(1.0, 1e6);
+  }
+  in.cohesion.assign(n, cohesion);
+  const double rhoS = r.uniform(1500, 3000), grain = r.logUniform(1e-5, 0.2);
+  in.rhoS.assign(n, rhoS);
+  in.grain.assign(n, grain);
+
+  // ---- split the water into solids and fluid
+  const int mode = r.integer(0, 3);  // 0 solids only, 1 fluid only, 2 mixture, 3 mixture + pure cells
+  const double pPure = mode == 3 ? r.uniform(0.2, 0.8) : 0.0;
+  const bool solidMoves = r.chance(0.5);
+  std::vector<double> hs(n, 0.0), qsx(n, 0.0), qsy(n, 0.0);
+  int fluidOnly = 0, solidOnly = 0, mixed = 0;
+  for (std::size_t k = 0; k < n; ++k) {
+    const double H = in.h[k];
+    if (!(H > 0)) continue;
+    double alpha;  // solid fraction of the release
+    if (mode == 0) alpha = 1;
+    else if (mode == 1) alpha = 0;
+    else if (mode == 3 && r.chance(pPure)) alpha = r.chance(0.5) ? 1.0 : 0.0;
+    else alpha = r.uniform(0.05, 0.95);
+    hs[k] = alpha * H;
+    const double hf = H - hs[k];
+    const double u = in.qx[k] / H, v = in.qy[k] / H;
+    if (solidMoves) qsx[k] = hs[k] * u, qsy[k] = hs[k] * v;
+    in.qx[k] = hf * u;
+    in.qy[k] = hf * v;
+    in.h[k] = alpha == 1 ? 0.0 : hf;
+    if (alpha == 1) ++solidOnly;
+    else if (alpha == 0) ++fluidOnly;
+    else ++mixed;
+  }
+  in.hs = std::move(hs);
+  in.qsx = std::move(qsx);
+  in.qsy = std::move(qsy);
+
+  // ---- steps: a cell-step budget (the two-phase stage is ~6x slower per cell than water only)
+  constexpr double kCellStepBudget = 1.5e5;
+  sc.steps = std::max(40, std::min(r.integer(80, 250), static_cast<int>(kCellStepBudget / static_cast<double>(n))));
+
+  static const char* dragNames[] = {"off", "linear", "quadratic"};
+  static const char* modeNames[] = {"solids only", "fluid only", "mixture", "mixture+pure cells"};
+  desc << "debrisSeed=" << seed << " family=Debris steps=" << sc.steps << " | two-phase: drag="
+       << dragNames[static_cast<int>(d.drag)] << " dragMultiplier=" << fmt("%.3g", d.dragMultiplier)
+       << " virtualMass=" << (d.virtualMass ? 1 : 0) << " earthPressure="
+       << (d.earthPressure == flow::EarthPressure::Constant ? "constant K=" + fmt("%.3g", d.kConst) : std::string("savage-hutter"))
+       << " poreB=" << fmt("%.3g", d.poreB) << " rhoF=" << fmt("%.4g", d.fluidDensity)
+       << " phi=" << (phiField ? std::string("field 10-45") : fmt("%.1f", phi0)) << " delta="
+       << (d.deltaFromPhi ? std::string("phi") : phiField ? std::string("field 10-45") : fmt("%.1f", delta0))
+       << " cohesion=" << fmt("%.3g", cohesion) << "Pa rhoS=" << fmt("%.4g", rhoS) << " grain=" << fmt("%.3g", grain)
+       << "m release=" << modeNames[mode] << " (" << solidOnly << " solid-only, " << fluidOnly << " fluid-only, " << mixed
+       << " mixed cells)" << (solidMoves ? " solids moving" : " solids at rest") << " | base scene (seed " << baseSeed
+       << "): " << baseDescription;
+  sc.description = desc.str();
+  return sc;
+}
+
+namespace {
+
+/// Host totals of a two-phase state.
+struct DebrisTotals {
+  double volF = 0, volS = 0;  ///< [m^3]
+  double potential = 0;       ///< sum [rho_s h_s (b - bmin + h_s/2) + rho_f h_f (b - bmin + h_s + h_f/2)] dx^2 [kg m]
+  int wetCells = 0;
+};
+
+DebrisTotals debrisTotals(const Grid& g, const std::vector<uint8_t>& mask, const std::vector<double>& bed, double bedMin,
+                          double rhoF, const std::vector<double>& h, const std::vector<double>& hs,
+                          const std::vector<double>& rhoS) {
+  long double vf = 0, vs = 0, pot = 0;
+  const double area = g.dx * g.dx;
+  DebrisTotals t;
+  for (std::size_t k = 0; k < g.cells(); ++k) {
+    if (!mask[k]) continue;
+    const double z = bed[k] - bedMin;
+    vf += static_cast<long double>(h[k] * area);
+    vs += static_cast<long double>(hs[k] * area);
+    pot += static_cast<long double>((rhoS[k] * hs[k] * (z + 0.5 * hs[k]) + rhoF * h[k] * (z + hs[k] + 0.5 * h[k])) * area);
+    if (h[k] > 0 || hs[k] > 0) ++t.wetCells;
+  }
+  t.volF = static_cast<double>(vf);
+  t.volS = static_cast<double>(vs);
+  t.potential = static_cast<double>(pot);
+  return t;
+}
+
+}  // namespace
+
+/// The two-phase checker. Per step: stableDt() positive (infinite only when everything drained),
+/// the step's CFL number dt * maxSpeed / dx (maxSpeed: the solver's two-phase CFL speed, which
+/// stableDt() is built from) within the setting, all diagnostics and fields finite, h_f >= 0 and
+/// h_s >= 0, nodata cells empty, non-negative outflow of each phase, the volume balance of each phase
+/// (V_p + tallied outflow_p - V_p(0), the single-phase tolerance per phase: no mass moves between the
+/// phases, so each is conserved on its own), the solver's volume sums against the fields', and a
+/// generous kinetic-energy bound.
+///
+/// Energy: the single-phase bound (E_kin <= E_kin(0) + g dP + slope work + 20 %) is not checked here.
+/// The two-phase model is not conservative for one g-weighted potential: the phases exchange energy
+/// through drag and buoyancy (-gamma g_p h_s grad H), whose work depends on both densities and on the
+/// relative velocity, the fluid sees the mixture surface b + h_s + h_f while the solids feel
+/// -g_n h_s grad b with a lateral pressure reduced by (1 - gamma) and by cohesion, and virtual mass
+/// redistributes momentum with a density-dependent weight; an exact released-energy budget would need
+/// all of those terms per cell. Instead a generous bound that still catches instabilities (which grow
+/// energy by orders of magnitude):
+///   E_kin(t) <= 2 (E_kin(0) + g max(0, P(0) - P(t))) + tiny,
+/// with E_kin the solver's kinetic energy in joules (both phases with their densities) and P the
+/// potential of both phases with their densities (solids under the fluid). Drag, Coulomb friction,
+/// Manning and shocks only dissipate, the exchange terms only move energy between the phases, so
+/// the factor 2 covers the slope-correction work (g_p, g_n < g, bounded by the released energy on
+/// the DEMs used) and the first-order splitting error of the stiff sources; tiny = 8 eps g P(0)
+/// sqrt(step) is the rounding noise of P (as in the single-phase check).
+StressOutcome runDebrisScene(const StressScene& scene) {
+  StressOutcome out;
+  const Grid& g = scene.grid;
+  const bool dbl = scene.precision == compute::Precision::Double;
+  const double eps = dbl ? std::numeric_limits<double>::epsilon() : static_cast<double>(std::numeric_limits<float>::epsilon());
+  const double area = g.dx * g.dx;
+  const auto start = std::chrono::steady_clock::now();
+  const flow::FlowSettings& s = scene.settings;
+  const double rhoF = s.debris.fluidDensity;
+  flow::FlowSolver solver(testContext(scene.precision), g, s);
+  solver.setInput(scene.input);
+  const std::vector<uint8_t>& mask = scene.input.mask;
+  const std::vector<double>& bed = scene.input.bed;
+  double bedMin = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < g.cells(); ++k)
+    if (mask[k]) bedMin = std::min(bedMin, bed[k]);
+  const double hDry = dbl ? s.hDry : static_cast<double>(static_cast<float>(s.hDry));
+
+  std::vector<double> h = solver.h(), hs = solver.hs(), qx, qy, qsx, qsy;
+  const DebrisTotals t0 = debrisTotals(g, mask, bed, bedMin, rhoF, h, hs, solver.solidScalar(1));
+  const double ekin0 = solver.diagnostics().kinetic;
+  double hMaxF = 0, hMaxS = 0;
+  for (std::size_t k = 0; k < g.cells(); ++k) hMaxF = std::max(hMaxF, h[k]), hMaxS = std::max(hMaxS, hs[k]);
+  std::vector<uint8_t> everWet(g.cells(), 0);
+  int everWetCount = 0;
+  auto markWet = [&]() {
+    for (std::size_t k = 0; k < g.cells(); ++k)
+      if ((h[k] > 0 || hs[k] > 0) && !everWet[k]) everWet[k] = 1, ++everWetCount;
+  };
+  markWet();
+  // Tolerances of the single-phase checker (see runStressScene), per phase.
+  const double relVol = dbl ? 1e-11 : 1e-5;
+  const double relDiag = 256 * eps;
+  const double relCfl = dbl ? 1e-12 : 1e-5;
+
+  double outF = 0, outS = 0;
+  for (int st = 1; st <= scene.steps; ++st) {
+    auto fail = [&](const std::string& what) {
+      out.ok = false;
+      char head[160];
+      std::snprintf(head, sizeof head, "step %d (t = %.6g s): ", st, solver.time());
+      out.failure = head + what;
+    };
+    const double stable = solver.stableDt();
+    if (std::isnan(stable) || stable <= 0) {
+      fail("stableDt() = " + num(stable));
+      break;
+    }
+    if (std::isinf(stable)) {
+      int wet = 0;
+      for (std::size_t k = 0; k < g.cells(); ++k) wet += mask[k] && (h[k] > 0 || hs[k] > 0);
+      if (wet == 0) break;
+      fail("stableDt() is infinite with " + std::to_string(wet) + " wet cells");
+      break;
+    }
+    const double dt = scene.dtFraction * stable *
+                      (std::getenv("TALUS_STRESS_DT_SCALE") ? std::atof(std::getenv("TALUS_STRESS_DT_SCALE")) : 1.0);
+    const double speed0 = solver.diagnostics().maxSpeed;
+    const double cfl = dt * speed0 / g.dx;
+    out.cflUsed = std::max(out.cflUsed, cfl);
+    if (!(dt <= stable * (1 + relCfl)) && !std::getenv("TALUS_STRESS_DT_SCALE")) {
+      fail("dt " + num(dt) + " exceeds stableDt() " + num(stable));
+      break;
+    }
+    if (!(cfl <= s.cfl * (1 + relCfl))) {
+      fail("CFL " + num(cfl) + " exceeds the setting " + num(s.cfl) + " (dt " + num(dt) + ", speed " + num(speed0) + ")");
+      break;
+    }
+
+    solver.step(dt);
+    ++out.steps;
+    const flow::FlowDiagnostics& dg = solver.diagnostics();
+    if (!std::isfinite(dg.volume) || !std::isfinite(dg.outflow) || !std::isfinite(dg.kinetic) ||
+        !std::isfinite(dg.maxSpeed) || !std::isfinite(dg.minH) || !std::isfinite(dg.volumeSolid) ||
+        !std::isfinite(dg.outflowSolid)) {
+      fail("non-finite diagnostics: volume " + num(dg.volume) + " solid " + num(dg.volumeSolid) + " outflow " +
+           num(dg.outflow) + " solid " + num(dg.outflowSolid) + " kinetic " + num(dg.kinetic) + " maxSpeed " +
+           num(dg.maxSpeed));
+      break;
+    }
+    if (dg.outflow < 0 || dg.outflowSolid < 0) {
+      fail("negative outflow: fluid " + num(dg.outflow) + " solid " + num(dg.outflowSolid) + " m^3");
+      break;
+    }
+    outF += dg.outflow;
+    outS += dg.outflowSolid;
+    out.cflAfter = std::max(out.cflAfter, dt * dg.maxSpeed / g.dx);
+
+    h = solver.h(), qx = solver.qx(), qy = solver.qy();
+    hs = solver.hs(), qsx = solver.qsx(), qsy = solver.qsy();
+    std::string bad;
+    for (std::size_t k = 0; k < g.cells() && bad.empty(); ++k) {
+      const std::string vals = ": h_f " + num(h[k]) + " q_f (" + num(qx[k]) + ", " + num(qy[k]) + ") h_s " + num(hs[k]) +
+                               " q_s (" + num(qsx[k]) + ", " + num(qsy[k]) + ")";
+      if (!std::isfinite(h[k]) || !std::isfinite(qx[k]) || !std::isfinite(qy[k]) || !std::isfinite(hs[k]) ||
+          !std::isfinite(qsx[k]) || !std::isfinite(qsy[k]))
+        bad = "non-finite field at " + cellText(g, k) + vals;
+      else if (h[k] < 0 || hs[k] < 0)
+        bad = "negative thickness at " + cellText(g, k) + vals;
+      else if (!mask[k] && (h[k] != 0 || qx[k] != 0 || qy[k] != 0 || hs[k] != 0 || qsx[k] != 0 || qsy[k] != 0))
+        bad = "material on nodata " + cellText(g, k) + vals;
+      else if (h[k] <= hDry && (qx[k] != 0 || qy[k] != 0))
+        bad = "fluid momentum on a fluid-dry " + cellText(g, k) + vals;
+    }
+    if (!bad.empty()) {
+      fail(bad);
+      break;
+    }
+    markWet();
+    const DebrisTotals t = debrisTotals(g, mask, bed, bedMin, rhoF, h, hs, solver.solidScalar(1));
+
+    // Volume balance of each phase.
+    const double balF = t.volF + outF - t0.volF, balS = t.volS + outS - t0.volS;
+    const double tolF = relVol * t0.volF + 4 * eps * hMaxF * area * everWetCount;
+    const double tolS = relVol * t0.volS + 4 * eps * hMaxS * area * everWetCount;
+    out.balanceRatio = std::max({out.balanceRatio, tolF > 0 ? std::fabs(balF) / tolF : (balF != 0 ? 1e300 : 0.0),
+                                 tolS > 0 ? std::fabs(balS) / tolS : (balS != 0 ? 1e300 : 0.0)});
+    if (t0.volF > 0) out.balanceRelative = std::max(out.balanceRelative, std::fabs(balF) / t0.volF);
+    if (t0.volS > 0) out.balanceRelative = std::max(out.balanceRelative, std::fabs(balS) / t0.volS);
+    if (!(std::fabs(balF) <= tolF)) {
+      fail("fluid volume balance V_f + outflow_f - V_f0 = " + num(balF) + " m^3 (V_f " + num(t.volF) + ", outflow " +
+           num(outF) + ", V_f0 " + num(t0.volF) + ", tolerance " + num(tolF) + ")");
+      break;
+    }
+    if (!(std::fabs(balS) <= tolS)) {
+      fail("solid volume balance V_s + outflow_s - V_s0 = " + num(balS) + " m^3 (V_s " + num(t.volS) + ", outflow " +
+           num(outS) + ", V_s0 " + num(t0.volS) + ", tolerance " + num(tolS) + ")");
+      break;
+    }
+    if (!(std::fabs(dg.volume - t.volF) <= relDiag * t.volF + 1e-300) ||
+        !(std::fabs(dg.volumeSolid - t.volS) <= relDiag * t.volS + 1e-300)) {
+      fail("diagnostics volumes (fluid " + num(dg.volume) + ", solid " + num(dg.volumeSolid) + ") differ from the fields' (" +
+           num(t.volF) + ", " + num(t.volS) + ")");
+      break;
+    }
+
+    // Kinetic energy: the generous bound documented above.
+    const double released = std::max(0.0, kGravity * (t0.potential - t.potential));
+    const double bound = 2 * (ekin0 + released) + 8 * eps * kGravity * t0.potential * std::sqrt(static_cast<double>(st)) + 1e-300;
+    out.energyRatio = std::max(out.energyRatio, dg.kinetic / bound);
+    if (ekin0 + released > 0) out.energyGainFraction = std::max(out.energyGainFraction, dg.kinetic / (ekin0 + released));
+    if (!(dg.kinetic <= bound)) {
+      // Where: the cell with the largest kinetic energy density.
+      std::size_t c = 0;
+      double best = -1;
+      for (std::size_t k = 0; k < g.cells(); ++k) {
+        const double e = (h[k] > hDry ? (qx[k] * qx[k] + qy[k] * qy[k]) / h[k] : 0.0) * rhoF +
+                         (hs[k] > hDry ? (qsx[k] * qsx[k] + qsy[k] * qsy[k]) / hs[k] : 0.0) * 2000.0;
+        if (e > best) best = e, c = k;
+      }
+      fail("kinetic energy " + num(dg.kinetic) + " J exceeds 2 (E_kin(0) + g dP) + rounding = 2 (" + num(ekin0) + " + " +
+           num(released) + ") + ... = " + num(bound) + " J; most energetic " + cellText(g, c) + ": h_f " + num(h[c]) +
+           " q_f (" + num(qx[c]) + ", " + num(qy[c]) + ") h_s " + num(hs[c]) + " q_s (" + num(qsx[c]) + ", " +
+           num(qsy[c]) + ") bed " + num(bed[c]) + " (initial h_f " + num(scene.input.h[c]) + ", h_s " +
+           num(scene.input.hs[c]) + ")");
+      break;
+    }
   }
   out.wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;

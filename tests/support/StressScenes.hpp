@@ -52,8 +52,12 @@ enum class StressFamily {
   Nodata = 5,       ///< nodata holes, many of them cutting into the water
   Friction = 6,     ///< extreme Manning n (0, 0.5-1, random fields) and fast initial flows
   Chaos = 7,        ///< every feature at once with the widest ranges
+  /// Two-phase (solids + fluid) scenes: NOT selected by seed % kStressFamilies (that mapping is kept
+  /// for the eight single-phase families); a debris scene comes from makeDebrisScene(seed), its own
+  /// pure function of the seed, with its own seed sequence debrisSeed().
+  Debris = 8,
 };
-inline constexpr int kStressFamilies = 8;
+inline constexpr int kStressFamilies = 8;  ///< single-phase families (seed % 8); Debris is separate
 const char* familyName(StressFamily f);
 
 /// Everything needed to run one scene.
@@ -76,6 +80,18 @@ StressScene makeStressScene(uint64_t seed);
 /// residue mod kStressFamilies is `family`.
 uint64_t stressSeed(uint64_t base, uint64_t index, StressFamily family);
 
+/// The two-phase scene of `seed` (a pure function of the seed, independent of makeStressScene's
+/// family rule): the grid, DEM (fractal or cliffs family), nodata mask, edges, precision and Manning
+/// map of a single-phase Fractal / Cliffs scene derived from the seed, its water split into solids
+/// and fluid (solids only, fluid only, or mixtures with fluid-only and solid-only cells), and random
+/// two-phase settings: drag off / linear / quadratic with the multiplier often at 1e-3 or 1e6,
+/// virtual mass on/off, Savage-Hutter or constant K in [0.3, 3], phi and delta in [10, 45] degrees,
+/// cohesion 0 .. 1e6 Pa, pore factor B in [0, 1], solid density, grain size.
+StressScene makeDebrisScene(uint64_t seed);
+
+/// The seed of debris scene `index` of a run with base seed `base`.
+uint64_t debrisSeed(uint64_t base, uint64_t index);
+
 /// Result of running one scene through the checker.
 struct StressOutcome {
   bool ok = true;
@@ -93,6 +109,9 @@ struct StressOutcome {
 
 /// Runs `scene` on the shared test device of its precision and checks the invariants after every
 /// step; stops at the first violation (reported in `failure`, with the step and cell).
+/// Two-phase scenes (settings.twoPhase) get the two-phase checks (see runDebrisScene in
+/// StressScenes.cpp): finite fields, h_s, h_f >= 0, per-phase volume balance, a generous kinetic
+/// energy bound, CFL; for them energyRatio is E_kin / bound (<= 1 passes).
 StressOutcome runStressScene(const StressScene& scene);
 
 }  // namespace talus::test
