@@ -90,9 +90,9 @@ inline real lateral_pressure(real K, Material m, real g, real H) {
   return fmax((real)0, (real)0.5 * K * ((real)1 - m.gamma) * g * H - (real)2 * m.c_over_rho * sqrt(K));
 }
 
-typedef struct {
-  real h, e, un, ut, pi;
-} SolidSide;
+/// A solid side is a Side whose last member holds the lateral pressure Pi instead of g.
+typedef Side SolidSide;
+#define SIDE_PI g
 
 /// Solid flux through a face (conventions of face_between in riemann.cl); the pressure part is
 /// dimensional (h* Pi) and shared by both cells. `locked`: no solid mass crosses (both sides static
@@ -101,21 +101,12 @@ typedef struct {
 inline Face solid_face(int m_in, SolidSide m, int p_in, SolidSide p, int kind, int locked) {
   Face f = {0, 0, 0, 0, 0, 0};
   if (!m_in && !p_in) return f;
-  int wall = 0;
-  if (!m_in) {
-    wall = kind == BOUNDARY_WALL || p.un > (real)0;
-    m = p;
-    m.un = wall ? -p.un : p.un;
-  } else if (!p_in) {
-    wall = kind == BOUNDARY_WALL || m.un < (real)0;
-    p = m;
-    p.un = wall ? -m.un : m.un;
-  }
+  const int wall = ghost_sides(m_in, &m, p_in, &p, kind);
   const real bs = fmax(m.e - m.h, p.e - p.h);
   const real hm = fmax((real)0, m.e - bs), hp = fmax((real)0, p.e - bs);
   if (hm > (real)0 || hp > (real)0) {
-    const real2 s = wave_speeds(hm, m.un, sqrt((real)2 * m.pi), hp, p.un, sqrt((real)2 * p.pi));
-    const FaceFlux r = hll_core(hm, m.un, m.ut, hm * m.pi, hp, p.un, p.ut, hp * p.pi, s);
+    const real2 s = wave_speeds(hm, m.un, sqrt((real)2 * m.SIDE_PI), hp, p.un, sqrt((real)2 * p.SIDE_PI));
+    const FaceFlux r = hll_core(hm, m.un, m.ut, hm * m.SIDE_PI, hp, p.un, p.ut, hp * p.SIDE_PI, s);
     f.fh = (wall || locked) ? (real)0 : r.fh;
     f.fqn = r.fqn;
     f.fqt = (wall || locked) ? (real)0 : r.fqt;

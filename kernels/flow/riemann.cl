@@ -95,19 +95,26 @@ typedef struct {
 /// boundary (kind BOUNDARY_OPEN) is outflow only: it copies the inside state (zero gradient) while
 /// the inside flow moves towards it, and acts as a wall while the flow moves away, so no water ever
 /// enters through it. Walls pass no mass and no tangential momentum.
+/// Replaces an outside side by the ghost of the inside one (see face_between); returns 1 when the
+/// face acts as a wall. Shared by the fluid and the solid fluxes.
+inline int ghost_sides(int m_in, Side* m, int p_in, Side* p, int kind) {
+  int wall = 0;
+  if (!m_in) {
+    wall = kind == BOUNDARY_WALL || p->un > (real)0;
+    *m = *p;
+    m->un = wall ? -p->un : p->un;
+  } else if (!p_in) {
+    wall = kind == BOUNDARY_WALL || m->un < (real)0;
+    *p = *m;
+    p->un = wall ? -m->un : m->un;
+  }
+  return wall;
+}
+
 inline Face face_between(int m_in, Side m, int p_in, Side p, int kind) {
   Face f = {0, 0, 0, 0, 0, 0};
   if (!m_in && !p_in) return f;
-  int wall = 0;
-  if (!m_in) {
-    wall = kind == BOUNDARY_WALL || p.un > (real)0;
-    m = p;
-    m.un = wall ? -p.un : p.un;
-  } else if (!p_in) {
-    wall = kind == BOUNDARY_WALL || m.un < (real)0;
-    p = m;
-    p.un = wall ? -m.un : m.un;
-  }
+  const int wall = ghost_sides(m_in, &m, p_in, &p, kind);
   // Hydrostatic reconstruction: the face bed is the higher of the two face beds.
   const real bs = fmax(m.e - m.h, p.e - p.h);
   const real hm = fmax((real)0, m.e - bs), hp = fmax((real)0, p.e - bs);
