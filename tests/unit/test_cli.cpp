@@ -27,33 +27,15 @@ namespace fs = std::filesystem;
 using talus::Grid;
 using talus::Raster;
 
+#include "support/CliRun.hpp"
+
 namespace {
 
+using talus::test::Outcome;
+using talus::test::shellQuote;
+using talus::test::slurp;
+
 bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
-
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream o;
-  o << in.rdbuf();
-  return o.str();
-}
-
-/// Quotes an argument for /bin/sh.
-std::string shellQuote(const std::string& s) {
-  std::string o = "'";
-  for (char c : s) o += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return o + "'";
-}
-
-/// What one run of the executable did.
-struct Outcome {
-  int status = -1;  ///< exit status, -1 when it did not exit normally
-  std::string out, err;
-};
-
-std::ostream& operator<<(std::ostream& o, const Outcome& r) {
-  return o << "exit " << r.status << "\n--- stdout ---\n" << r.out << "--- stderr ---\n" << r.err;
-}
 
 /// Fixture: a fresh temporary folder per test holding a tiny scene (20x16 cells, a block of water on
 /// a gentle slope, open edges, 3 s simulated), and a runner for the executable.
@@ -100,15 +82,7 @@ class Cli : public ::testing::Test {
 
   /// Runs `talus ARGS` (args already shell-quoted as needed) in the temp folder.
   Outcome talus(const std::string& args) {
-    const fs::path out = dir_ / "stdout.txt", err = dir_ / "stderr.txt";
-    const std::string cmd = "cd " + shellQuote(dir_.string()) + " && " + shellQuote(TALUS_BINARY) + " " + args +
-                            " >" + shellQuote(out.string()) + " 2>" + shellQuote(err.string()) + " </dev/null";
-    const int raw = std::system(cmd.c_str());
-    Outcome r;
-    if (raw != -1 && WIFEXITED(raw)) r.status = WEXITSTATUS(raw);
-    r.out = slurp(out);
-    r.err = slurp(err);
-    return r;
+    return talus::test::runIn(dir_, TALUS_BINARY, args);
   }
 
   fs::path dir_;

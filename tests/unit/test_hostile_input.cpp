@@ -51,7 +51,13 @@ using talus::Raster;
 using talus::io::RunConfig;
 using talus::sim::talusRunKeys;
 
+#include "support/CliRun.hpp"
+
 namespace {
+
+using talus::test::Outcome;
+using talus::test::shellQuote;
+using talus::test::slurp;
 
 bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
 
@@ -70,30 +76,6 @@ std::string expectInputError(const std::function<void()>& fn, std::initializer_l
   }
   ADD_FAILURE() << "expected talus::InputError, nothing was thrown";
   return "";
-}
-
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream o;
-  o << in.rdbuf();
-  return o.str();
-}
-
-/// Quotes an argument for /bin/sh.
-std::string shellQuote(const std::string& s) {
-  std::string o = "'";
-  for (char c : s) o += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return o + "'";
-}
-
-/// What one run of the talus executable did.
-struct Outcome {
-  int status = -1;  ///< exit status, -1 when it did not exit normally (a crash)
-  std::string out, err;
-};
-
-std::ostream& operator<<(std::ostream& o, const Outcome& r) {
-  return o << "exit " << r.status << "\n--- stdout ---\n" << r.out << "--- stderr ---\n" << r.err;
 }
 
 /// A small georeferenced raster (12 x 10 cells of 2 m) filled by f(i, j).
@@ -146,15 +128,7 @@ class HostileInput : public ::testing::Test {
 
   /// Runs `talus ARGS` (already shell-quoted as needed) in the temp folder.
   Outcome talus(const std::string& args) {
-    const fs::path out = dir_ / "stdout.txt", err = dir_ / "stderr.txt";
-    const std::string cmd = "cd " + shellQuote(dir_.string()) + " && " + shellQuote(TALUS_BINARY) + " " + args +
-                            " >" + shellQuote(out.string()) + " 2>" + shellQuote(err.string()) + " </dev/null";
-    const int raw = std::system(cmd.c_str());
-    Outcome r;
-    if (raw != -1 && WIFEXITED(raw)) r.status = WEXITSTATUS(raw);
-    r.out = slurp(out);
-    r.err = slurp(err);
-    return r;
+    return talus::test::runIn(dir_, TALUS_BINARY, args);
   }
   void requireBinary() {
     ASSERT_FALSE(std::string(TALUS_BINARY).empty()) << "TALUS_BINARY is not defined (tests/CMakeLists.txt)";

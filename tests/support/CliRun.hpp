@@ -1,0 +1,25 @@
+// Running the talus executable from tests: shell quoting, captured output and exit status.
+#pragma once
+#include <filesystem>
+#include <ostream>
+#include <string>
+
+namespace talus::test {
+
+/// The whole file as bytes ("" when it cannot be read).
+std::string slurp(const std::filesystem::path& path);
+/// Quotes an argument for /bin/sh.
+std::string shellQuote(const std::string& s);
+
+/// What one run of an executable did.
+struct Outcome {
+  int status = -1;  ///< exit status, -1 when it did not exit normally (a crash)
+  std::string out, err;
+};
+std::ostream& operator<<(std::ostream& o, const Outcome& r);
+
+/// Runs `binary ARGS` (ARGS already shell-quoted as needed) in `dir`, stdin from /dev/null, with
+/// stdout and stderr captured through files in `dir`.
+Outcome runIn(const std::filesystem::path& dir, const std::string& binary, const std::string& args);
+
+}  // namespace talus::test
