@@ -12,6 +12,7 @@
 #include <array>
 #include <cctype>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <mutex>
 #include <new>
@@ -251,9 +252,33 @@ Raster readRaster(const std::string& path) {
     // Check that the data can exist before allocating the grid: a short file whose header claims a
     // huge grid then fails here instead of after gigabytes were allocated and zero-filled. ASCII
     // grids need at least two bytes a cell; other formats (random access) must yield their last row.
+    // A crafted header can declare blocks (strips, tiles) far larger than the raster, which GDAL
+    // would allocate whole on the first read (seen by the fuzzer: 4 GB for a 5-column file).
+    int bx = 0, by = 0;
+    band->GetBlockSize(&bx, &by);
+    const unsigned long long blockCells = static_cast<unsigned long long>(std::max(bx, 0)) *
+                                          static_cast<unsigned long long>(std::max(by, 0));
+    if (blockCells > std::max<unsigned long long>(4ull * cells, 1ull << 22))
+      throw InputError("raster '" + path + "' declares blocks of " + std::to_string(bx) + "x" + std::to_string(by) +
+                       " cells for a " + std::to_string(nx) + "x" + std::to_string(ny) + " raster (corrupt header?)");
     const std::string driver = ds->GetDriver() ? ds->GetDriver()->GetDescription() : "";
     std::error_code ec;
     const auto bytes = std::filesystem::file_size(path, ec);
+    // A TIFF may declare strips or tiles of more bytes than the file holds; libtiff allocates the
+    // declared size on read (seen by the fuzzer: 4 GB for a 257-byte file). GDAL reports each
+    // block's declared byte count in the "TIFF" metadata domain.
+    if (driver == "GTiff" && !ec && bx > 0 && by > 0) {
+      const long long blocksX = (nx + bx - 1) / bx, blocksY = (ny + by - 1) / by;
+      if (blocksX * blocksY <= 100000)
+        for (long long yb = 0; yb < blocksY; ++yb)
+          for (long long xb = 0; xb < blocksX; ++xb) {
+            const std::string key = "BLOCK_SIZE_" + std::to_string(xb) + "_" + std::to_string(yb);
+            const char* size = band->GetMetadataItem(key.c_str(), "TIFF");
+            if (size && std::strtoull(size, nullptr, 10) > bytes)
+              throw InputError("raster '" + path + "' declares a data block of " + size + " bytes in a file of " +
+                               std::to_string(bytes) + " bytes (truncated or corrupt)");
+          }
+    }
     if (driver == "AAIGrid" && !ec && bytes < 2 * cells)
       throw InputError("raster '" + path + "' is truncated: its header claims " + std::to_string(nx) + "x" +
                        std::to_string(ny) + " cells but the file has only " + std::to_string(bytes) + " bytes");

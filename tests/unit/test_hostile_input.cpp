@@ -439,3 +439,17 @@ TEST_F(HostileInput, OutputFolderInUnwritableLocationExits2) {
   EXPECT_EQ(key.status, 2) << key;
   EXPECT_TRUE(contains(key.err, "/proc/talus_out/deeper")) << key;
 }
+
+// Found by the raster fuzzer in CI: a 257-byte TIFF whose strip is declared 2^32 rows high made GDAL
+// allocate 4 GB on the first read. readRaster must refuse it by name before any read.
+TEST_F(HostileInput, TiffDeclaringHugeBlocksIsRefusedBeforeReading) {
+  const std::string input = slurp(std::string(TALUS_TEST_DATA_DIR) + "/../fuzz/corpus/raster/oom_huge_strip.tif.bin");
+  ASSERT_GT(input.size(), 1u) << "fuzz corpus file missing";
+  const std::string file = write("huge_strip.tif", input.substr(1));  // byte 0 chose the extension
+  try {
+    talus::io::readRaster(file);
+    ADD_FAILURE() << "a TIFF with absurd strip sizes was accepted";
+  } catch (const talus::InputError& e) {
+    EXPECT_TRUE(contains(e.what(), file)) << e.what();
+  }
+}
