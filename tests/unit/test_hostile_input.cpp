@@ -443,8 +443,8 @@ TEST_F(HostileInput, OutputFolderInUnwritableLocationExits2) {
 // Found by the raster fuzzer in CI: a 257-byte TIFF whose strip is declared 2^32 rows high made GDAL
 // allocate 4 GB on the first read. readRaster must refuse it by name before any read.
 TEST_F(HostileInput, TiffDeclaringHugeBlocksIsRefusedBeforeReading) {
-  const std::string input = slurp(std::string(TALUS_TEST_DATA_DIR) + "/../fuzz/corpus/raster/oom_huge_strip.tif.bin");
-  ASSERT_GT(input.size(), 1u) << "fuzz corpus file missing";
+  const std::string input = slurp(std::string(TALUS_TEST_DATA_DIR) + "/../tests/data/oom_huge_strip.tif.bin");
+  ASSERT_GT(input.size(), 1u) << "tests/data/oom_huge_strip.tif.bin missing";
   const std::string file = write("huge_strip.tif", input.substr(1));  // byte 0 chose the extension
   try {
     talus::io::readRaster(file);
