@@ -586,6 +586,15 @@ std::string num(double v) {
   return buf;
 }
 
+
+/// Marks `out` failed at `step` (time t) with the message `what`.
+static void recordFailure(StressOutcome& out, int step, double t, const std::string& what) {
+  out.ok = false;
+  char head[160];
+  std::snprintf(head, sizeof head, "step %d (t = %.6g s): ", step, t);
+  out.failure = head + what;
+}
+
 }  // namespace
 
 StressOutcome runDebrisScene(const StressScene& scene);
@@ -689,12 +698,7 @@ StressOutcome runStressScene(const StressScene& scene) {
   double cumOut = 0;
   double slopeWork = 0;  // integral of the slope work rate, see the energy tolerance
   for (int st = 1; st <= scene.steps; ++st) {
-    auto fail = [&](const std::string& what) {
-      out.ok = false;
-      char head[160];
-      std::snprintf(head, sizeof head, "step %d (t = %.6g s): ", st, solver.time());
-      out.failure = head + what;
-    };
+    auto fail = [&](const std::string& what) { recordFailure(out, st, solver.time(), what); };
     const double stable = solver.stableDt();
     if (std::isnan(stable) || stable <= 0) {
       fail("stableDt() = " + num(stable));
@@ -1042,12 +1046,7 @@ StressOutcome runDebrisScene(const StressScene& scene) {
 
   double outF = 0, outS = 0;
   for (int st = 1; st <= scene.steps; ++st) {
-    auto fail = [&](const std::string& what) {
-      out.ok = false;
-      char head[160];
-      std::snprintf(head, sizeof head, "step %d (t = %.6g s): ", st, solver.time());
-      out.failure = head + what;
-    };
+    auto fail = [&](const std::string& what) { recordFailure(out, st, solver.time(), what); };
     const double stable = solver.stableDt();
     if (std::isnan(stable) || stable <= 0) {
       fail("stableDt() = " + num(stable));
