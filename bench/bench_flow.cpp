@@ -109,17 +109,23 @@ void benchTwoPhase(const std::string& device, compute::Precision prec, int size,
     const char* name;
     flow::DragLaw drag;
     bool virtualMass;
+    bool viscous = false;
   };
   const Variant variants[] = {{"drag off", flow::DragLaw::Off, false},
                               {"linear drag", flow::DragLaw::Linear, false},
                               {"linear drag + virtual mass", flow::DragLaw::Linear, true},
-                              {"quadratic drag + virtual mass", flow::DragLaw::Quadratic, true}};
+                              {"quadratic drag + virtual mass", flow::DragLaw::Quadratic, true},
+                              {"quadratic + vm + viscous P.30", flow::DragLaw::Quadratic, true, true}};
   for (const Variant& v : variants) {
     flow::FlowSettings settings;
     settings.edge = flow::Boundary::Wall;
     settings.twoPhase = true;
     settings.debris.drag = v.drag;
     settings.debris.virtualMass = v.virtualMass;
+    if (v.viscous) {  // the paper's values (OpenLISEM Hazard 2.0a, numerical tests)
+      settings.debris.reynolds = 15000;
+      settings.debris.reynoldsInterfacial = 30;
+    }
     flow::FlowSolver solver(*ctx, g, settings);
     solver.setInput(in);
     const double seconds = timeSteps(*ctx, solver, steps);

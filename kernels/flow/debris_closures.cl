@@ -30,6 +30,10 @@ typedef struct {
   real rho_s_default;  // solid density where no solids are [kg/m^3]
   real d_default;      // grain size where no solids are [m]
   real film_h;         // solid layers thinner than this have desingularised velocities [m]
+  real inv_nr;         // 1 / N_R, Reynolds number of the fluid's Newtonian stress (0: off)
+  real inv_nra;        // 1 / N_RA, interfacial Reynolds number of the non-Newtonian stress (0: off)
+  real chi;            // vertical shear factor of the fluid velocity (basal viscous term)
+  real xi;             // vertical solid-fraction profile factor (basal interfacial term)
   real pad0, pad1, pad2;
 } DebrisParams;
 

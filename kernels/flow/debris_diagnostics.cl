@@ -1,11 +1,17 @@
 // Diagnostics and running maxima of the two-phase model (spec §8), one work-group per active tile:
 // CFL speed max over cells of max(|u_s| + |v_s|, |u_f| + |v_f|) + 2 (sqrt(g H max(1, K_passive)) + w),
-// w the bed-slope speed of diagnostics.cl,
+// w the bed-slope speed of diagnostics.cl (plus the viscous speed bound of debris_viscous.cl when on),
 // volumes and outflow of each phase, kinetic energy (J, both phases), smallest thickness; and per
 // cell the maxima of each phase's thickness and speed, of the total thickness, the solid fraction
 // and the impact pressure rho_m |u_m|^2 of the mixture, and the arrival time of the mixture.
 #include "flow/diagnostics.cl"
 #include "flow/debris_closures.cl"
+#ifndef DEBRIS_VISCOUS
+#define DEBRIS_VISCOUS 0
+#endif
+#if DEBRIS_VISCOUS
+#include "flow/debris_viscous.cl"
+#endif
 
 __kernel __attribute__((reqd_work_group_size(TILE, TILE, 1)))
 void debris_tile_diagnostics(__constant const FlowParams* p, __constant const DebrisParams* dp,
@@ -35,6 +41,9 @@ void debris_tile_diagnostics(__constant const FlowParams* p, __constant const De
     speed = H > (real)0 ? fmax(fabs(us) + fabs(vs), fabs(uf) + fabs(vf)) +
                               (real)2 * (sqrt(GRAVITY * H * fmax((real)1, K)) + slope_speed[k])
                         : (real)0;
+#if DEBRIS_VISCOUS
+    speed += visc_speed(p, dp, mask, S, hf, qfx, qfy, i, j);
+#endif
     volf = h * area;
     vols = hs * area;
     outf = out_step[k];

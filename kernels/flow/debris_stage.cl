@@ -11,14 +11,22 @@
 //   internal friction angle phi, the solid density rho_s and the grain size d, upwinded.
 // Sources S (implicit, per stage, first order in time): Coulomb friction tan(delta) (1 - B gamma_eff)
 //   g_n h_s on the solids, then drag with virtual mass as an exact, momentum-conserving relaxation of
-//   the phase velocities (held solids stay at rest), then Manning on the fluid; friction can stop
-//   motion but never reverse it.
+//   the phase velocities (held solids stay at rest), then the basal viscous terms and Manning on the
+//   fluid; friction can stop motion but never reverse it.
+// Viscous stress of the fluid (P.30, compiled in with -DDEBRIS_VISCOUS=1): face fluxes of
+//   debris_viscous.cl added to the fluid momentum fluxes.
 // Static solids: a cell whose solid motion friction stopped in the last stage is "locked"; no solid
 //   mass crosses a face between two locked (or empty) cells, so material at rest whose driving force
 //   stays below friction does not creep by numerical diffusion; pressure still acts, so a pile that
 //   friction cannot hold starts to move in the next stage.
 #include "flow/debris_closures.cl"
 #include "flow/riemann.cl"
+#ifndef DEBRIS_VISCOUS
+#define DEBRIS_VISCOUS 0
+#endif
+#if DEBRIS_VISCOUS
+#include "flow/debris_viscous.cl"
+#endif
 
 #define NSOLID 6  // solid state components: h_s, q_sx, q_sy, h_s phi, h_s rho_s, h_s d
 
@@ -263,6 +271,15 @@ __kernel void debris_stage(__constant const FlowParams* p, __constant const Debr
     norm_f[dir] = sf;
     norm_s[dir] = ss;
     tang_f[dir] = Fp.fqt - Fm.fqt;
+#if DEBRIS_VISCOUS
+    {
+      // Viscous stress of the fluid (debris_viscous.cl), through the same two faces.
+      const real2 Vm = m_in ? visc_face(p, dp, mask, S_st, hf_st, qfx_st, qfy_st, gp, i - di, j - dj, dir) : (real2)(0, 0);
+      const real2 Vp = p_in ? visc_face(p, dp, mask, S_st, hf_st, qfx_st, qfy_st, gp, i, j, dir) : (real2)(0, 0);
+      norm_f[dir] += Vp.x - Vm.x;
+      tang_f[dir] += Vp.y - Vm.y;
+    }
+#endif
     tang_s[dir] = Sp.fqt - Sm.fqt;
     // Scalars: upwind value times the solid mass flux.
     for (int c = 0; c < 3; ++c) {
@@ -325,6 +342,10 @@ __kernel void debris_stage(__constant const FlowParams* p, __constant const Debr
   }
   if (dp->drag_law != DRAG_OFF && hsn > p->h_dry && hfn > p->h_dry)
     drag_relax(dp, mn, hsn, hfn, qs, qf, ds, locked);
+#if DEBRIS_VISCOUS
+  if (hfn > p->h_dry) visc_basal(dp, g, hsn, hfn, hsn > p->h_dry ? qs[0] / hsn : (real)0,
+                                 hsn > p->h_dry ? qs[1] / hsn : (real)0, qf, ds);
+#endif
   if (hfn > p->h_dry && manning[k] > (real)0) {
     const real uf = qf[0] / hfn, vf = qf[1] / hfn;
     const real n2 = manning[k] * manning[k];

@@ -12,11 +12,11 @@ struct DebrisParamsT {
   int32_t virtualMass;
   int32_t deltaFromPhi;
   Real kConst, rhoF, poreB, dragMult, dragM, dragBigM, dragKappa, viscA, viscB, phiDefault, rhoSDefault, dDefault;
-  Real filmH, pad0, pad1, pad2;
+  Real filmH, invNR, invNRA, chi, xi, pad0, pad1, pad2;
 };
 
-static_assert(offsetof(DebrisParamsT<float>, kConst) == 16 && sizeof(DebrisParamsT<float>) == 80, "DebrisParams<float>");
-static_assert(offsetof(DebrisParamsT<double>, kConst) == 16 && sizeof(DebrisParamsT<double>) == 144,
+static_assert(offsetof(DebrisParamsT<float>, kConst) == 16 && sizeof(DebrisParamsT<float>) == 96, "DebrisParams<float>");
+static_assert(offsetof(DebrisParamsT<double>, kConst) == 16 && sizeof(DebrisParamsT<double>) == 176,
               "DebrisParams<double>");
 
 }  // namespace talus::flow

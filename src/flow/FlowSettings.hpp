@@ -29,6 +29,11 @@ struct DebrisSettings {
   bool virtualMass = true;
   bool deltaFromPhi = true;      ///< bed friction angle = internal friction angle
   double filmThickness = 1e-4;   ///< [m] solid films thinner than this get desingularised velocities
+  double reynolds = 0;           ///< N_R of the fluid's Newtonian stress (P.30); 0: off
+  double reynoldsInterfacial = 0;  ///< N_RA of the interfacial (non-Newtonian) stress; 0: off
+  double chi = 0;                ///< vertical shear factor of the basal viscous term
+  double xi = 0;                 ///< vertical solid-fraction factor of the basal interfacial term
+  bool viscous() const { return reynolds > 0 || reynoldsInterfacial > 0; }
 };
 
 struct FlowSettings {

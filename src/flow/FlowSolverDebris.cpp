@@ -40,6 +40,10 @@ void writeDebrisParams(compute::RawBuffer& buf, const DebrisSettings& d) {
   p.rhoSDefault = static_cast<Real>(kDefaultRhoS);
   p.dDefault = static_cast<Real>(kDefaultGrain);
   p.filmH = static_cast<Real>(d.filmThickness);
+  p.invNR = static_cast<Real>(d.reynolds > 0 ? 1.0 / d.reynolds : 0.0);
+  p.invNRA = static_cast<Real>(d.reynoldsInterfacial > 0 ? 1.0 / d.reynoldsInterfacial : 0.0);
+  p.chi = static_cast<Real>(d.chi);
+  p.xi = static_cast<Real>(d.xi);
   buf.writeBytes(&p, sizeof p);
 }
 
@@ -67,7 +71,9 @@ void FlowSolver::buildDebris() {
   lock1_ = compute::Buffer<uint8_t>(ctx, n, "static solids stage");
   const std::string opts = "-DLIMITER=" + std::to_string(static_cast<int>(settings_.limiter)) +
                            " -DRIEMANN=" + std::to_string(static_cast<int>(settings_.riemann)) +
-                           " -DTILE=" + std::to_string(kTile);
+                           " -DTILE=" + std::to_string(kTile) +
+                           // The viscous stresses are compiled out when both Reynolds numbers are off.
+                           " -DDEBRIS_VISCOUS=" + (settings_.debris.viscous() ? "1" : "0");
   debrisStage_ = compute::Kernel(ctx.program("flow/debris_stage.cl", opts), "debris_stage");
   debrisTrack_ = compute::Kernel(ctx.program("flow/debris_diagnostics.cl", opts), "debris_track_maxima");
   debrisDiagnostics_ = compute::Kernel(ctx.program("flow/debris_diagnostics.cl", opts), "debris_tile_diagnostics");

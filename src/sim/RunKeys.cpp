@@ -120,7 +120,15 @@ void addSolidKeys(KeyRegistry& r) {
       << real("Drag Smoothing Velocity", "10", "m/s", 0, 1e4, "K of the smoothing function S_p (P.33)")
       << real("Viscosity Coefficient", "0.001", "Pa s", 1e-6, 1e5, "a in O'Brien-Julien eta = a exp(b alpha_s)")
       << real("Viscosity Exponent", "10", "-", 0, 50, "b in O'Brien-Julien eta = a exp(b alpha_s)")
-      << flag("Virtual Mass", "1", "virtual mass in the phase exchange (C_vm = (1 + 2 alpha_s) / (2 alpha_f))");
+      << flag("Virtual Mass", "1", "virtual mass in the phase exchange (C_vm = (1 + 2 alpha_s) / (2 alpha_f))")
+      << real("Viscous Reynolds Number", "0", "-", 0, 1e12,
+              "N_R of the fluid's Newtonian stress (P.30; paper: 15000); 0 = off; two-phase model only")
+      << real("Interfacial Reynolds Number", "0", "-", 0, 1e12,
+              "N_RA of the fluid's non-Newtonian stress from solid-fraction gradients (paper: 30); 0 = off")
+      << real("Viscous Shear Factor", "0", "-", 0, 100,
+              "chi: basal viscous damping -chi nu_R u_f / H^2 of the fluid (needs N_R > 0)")
+      << real("Viscous Profile Factor", "0", "-", 0, 100,
+              "xi: damping -xi alpha_s nu_RA (u_f - u_s) / H^2 of the relative motion (needs N_RA > 0)");
 }
 
 void addTimeKeys(KeyRegistry& r) {

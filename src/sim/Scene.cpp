@@ -115,6 +115,10 @@ Scene loadScene(const io::RunConfig& cfg) {
   d.viscB = cfg.real("Viscosity Exponent");
   d.virtualMass = cfg.flag("Virtual Mass");
   d.deltaFromPhi = cfg.flag("Bed Friction Equals IFA");
+  d.reynolds = cfg.real("Viscous Reynolds Number");
+  d.reynoldsInterfacial = cfg.real("Interfacial Reynolds Number");
+  d.chi = cfg.real("Viscous Shear Factor");
+  d.xi = cfg.real("Viscous Profile Factor");
   f.limiter = flow::parseLimiter(cfg.choice("Limiter"));
   f.riemann = flow::parseRiemann(cfg.choice("Riemann Solver"));
   f.cfl = cfg.real("CFL");
