@@ -256,15 +256,22 @@ __kernel void debris_stage(__constant const FlowParams* p, __constant const Debr
               ((empty && lock_m) ? (real)0 : Sm.fqn + Sm.p + Sm.corr_p);
     if (c0.hs > (real)0) {
       const real span = (m_in && p_in) ? (real)0.5 : (real)1;
-      // The bed pushes the solids towards the lower side, unless they cannot go there: a wall, or
-      // a neighbour whose bed rises above the solid surface (a pit or trough along dir). Without
-      // this a solid in a pit would gain momentum for ever while the hydrostatic reconstruction
-      // keeps its mass in place (seen: 0.5 m of solids at 158 m/s in a 3 m deep DEM pit).
+      // The bed pushes the solids towards the lower side, unless they cannot go down there: a
+      // wall; a neighbour whose bed rises above our solid surface (we sit in a pit or trough along
+      // dir); or static solids in the neighbour reaching our surface (a filled pit, a deposit
+      // banked against an obstacle: our solids could only move level or up, over material that
+      // acts as ground). The face pressures (hydrostatic reconstruction) see no step there, so the
+      // bed force would be unbalanced: the solids would gain momentum for ever without releasing
+      // potential energy (seen: 0.5 m of solids at 158 m/s in a 3 m deep DEM pit; solids on the
+      // rim of a filled 18 m pit accelerating at 12 g). Moving neighbours never block (the rear of
+      // a sliding mass is pulled down with it), nor do lower surfaces (fronts, dry slopes).
       const real slope = span * (b[kp] - b[km]);
       const int down_in = slope > (real)0 ? m_in : p_in;
       const int down_k = slope > (real)0 ? km : kp;
       const int down_kind = slope > (real)0 ? kind_m : kind_p;
-      const int blocked = down_in ? b[down_k] > b[k] + c0.hs : down_kind == BOUNDARY_WALL;
+      const real top = b[k] + c0.hs;
+      const int blocked = down_in ? b[down_k] > top || (lock_st[down_k] && b[down_k] + fmax(S_st[down_k], (real)0) >= top)
+                                  : down_kind == BOUNDARY_WALL;
       if (!blocked) ss += gnk * c0.hs * slope;
       ss += mc.gamma * g * c0.hs * span * ((cp.hs + cp.hf) - (cm.hs + cm.hf));
     }

@@ -1,6 +1,7 @@
 // Solids trapped by the terrain stay at rest: a cohesive solid (no lateral pressure) lying in a DEM
 // pit deeper than the solid layer, on a steep regional slope, and one pressed against a wall by the
-// slope. The hydrostatic reconstruction keeps their mass in place, so the bed force must not push
+// slope, and one on the rim of a pit filled with static solids. The hydrostatic reconstruction keeps
+// their mass in place, so the bed force must not push
 // them either: before this was handled, such a cell gained momentum for ever (158 m/s in the
 // kot_debrisflow example). Exact expectation: momentum exactly zero, thickness bitwise unchanged.
 #include <gtest/gtest.h>
@@ -70,5 +71,22 @@ TEST(SolidTraps, SolidPressedAgainstAWallStaysAtRest) {
     }
   const auto [qmax, unchanged] = runTrapped(in, g, flow::Boundary::Wall, 200);
   EXPECT_EQ(qmax, 0.0) << "the wall holds the solid: no momentum may build up against it";
+  EXPECT_TRUE(unchanged);
+}
+
+// A 6 m deep pit in flat ground, filled with static solids up to the 0.5 m solid layer around it
+// (a flat solid surface, rigid material: no lateral pressure). The cells on the rim see a centred
+// bed gradient of 0.6 towards the pit, three times the friction 0.2, but their solids cannot go down
+// there: the pit is full of material at rest that acts as ground. Before this was handled the rim
+// accelerated into the full pit without releasing any potential energy (found by the two-phase
+// stress soak: 12 g on the rim of a filled 18 m pit). Exact expectation: nothing moves.
+TEST(SolidTraps, SolidOnTheRimOfAFilledPitStaysAtRest) {
+  const Grid g = Grid::make(9, 9, 5.0);
+  flow::FlowInput in = solids(g);
+  in.hs.assign(g.cells(), 0.5);
+  in.bed[g.index(4, 4)] = -6.0;
+  in.hs[g.index(4, 4)] = 6.5;
+  const auto [qmax, unchanged] = runTrapped(in, g, flow::Boundary::Wall, 200);
+  EXPECT_EQ(qmax, 0.0) << "solids next to a filled pit must not be pushed into it";
   EXPECT_TRUE(unchanged);
 }
