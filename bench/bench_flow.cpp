@@ -7,6 +7,7 @@
 // Effective bandwidth uses a model of the minimum traffic of one step (kRealsPerCellUpdate reals per
 // cell: two fused stages, friction, maxima and diagnostics, every field read or written once per
 // kernel), so it is a lower bound of the traffic the device really served.
+#include "bench_args.hpp"
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -23,19 +24,13 @@ using namespace talus;
 
 namespace {
 
+using talus::bench::split;
+
 /// Reals moved per cell per step in the traffic model (see docs/performance.md): each fused stage
 /// reads the tile with its two-cell halo (20^2 / 16^2 = 1.5625 times) of h, qx, qy, b, g_p (and a
 /// byte of mask), g_n and the RK base state (3), and writes 3 fields and the outflow (16 in all);
 /// friction moves 6, maxima 9, diagnostics 5.
 constexpr double kRealsPerCellUpdate = 2 * 16 + 6 + 9 + 5;
-
-std::vector<std::string> split(const std::string& s) {
-  std::vector<std::string> out;
-  std::stringstream ss(s);
-  std::string item;
-  while (std::getline(ss, item, ',')) out.push_back(item);
-  return out;
-}
 
 flow::FlowInput wetScene(const Grid& g) {
   flow::FlowInput in;

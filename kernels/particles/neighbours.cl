@@ -1,0 +1,88 @@
+// The neighbour grid as particle kernels see it: the parameter block (mirrored by
+// src/particles/NeighbourGridParams.hpp), the cell of a position, and the 3 x 3 block of cells to
+// visit for the neighbours of a particle.
+//
+// The grid covers the domain box [x_min, x_max] x [y_min, y_max] with cells_x * cells_y square
+// cells of edge cell_size, numbered row-major from the lower-left corner: key = cy * cells_x + cx.
+// A position outside the box (or NaN) has no cell: its key is CELL_KEY_OUTSIDE, which sorts after
+// every real key. cell_size is at least the search radius (src/particles/NeighbourGrid.hpp says by
+// how much), so every particle within the radius of a particle lies in its own or one of the eight
+// surrounding cells.
+//
+// After NeighbourGrid::build() and the reordering of the particle arrays by its `order`, the
+// particles of cell c are the array entries cell_start[c] <= j < cell_end[c] (empty cells have
+// cell_start = cell_end = 0). A neighbour loop reads:
+//
+//   const NeighbourCellRange cells = neighbour_cells_around(grid, x[i], y[i]);
+//   for (int cy = cells.y0; cy <= cells.y1; ++cy)
+//     for (int cx = cells.x0; cx <= cells.x1; ++cx) {
+//       const uint c = neighbour_cell_key(grid, cx, cy);
+//       for (uint j = cell_start[c]; j < cell_end[c]; ++j) {
+//         if (j == i) continue;
+//         const real dx = x[j] - x[i], dy = y[j] - y[i];
+//         if (dx * dx + dy * dy > radius * radius) continue;
+//         ... pair (i, j) ...
+//       }
+//     }
+//
+// The visiting order (rows bottom to top, cells left to right, particles by sorted index) is fixed,
+// so sums over neighbours are bitwise reproducible run to run.
+#ifndef TALUS_NEIGHBOURS_CL
+#define TALUS_NEIGHBOURS_CL
+#include "common/real.cl"
+
+/// Key of a particle outside the grid (and padding of the sort): sorts after every cell.
+#define CELL_KEY_OUTSIDE 0xFFFFFFFFu
+
+/// Geometry of the neighbour grid in __constant memory. Layout checked by the host's static_assert.
+typedef struct {
+  int cells_x, cells_y;  // cells per row and per column
+  real x_min, y_min;     // lower-left corner of the domain box [m]
+  real x_max, y_max;     // upper-right corner of the domain box [m]
+  real cell_size;        // cell edge [m], >= the search radius
+  real pad0;
+} NeighbourGridParams;
+
+/// The 3 x 3 block of cells around a particle, clipped to the grid: columns x0..x1, rows y0..y1
+/// (inclusive). Empty (x0 > x1) for a particle outside the grid.
+typedef struct {
+  int x0, x1, y0, y1;
+} NeighbourCellRange;
+
+/// Cell (column, row) of a position, or (-1, -1) outside the box or for NaN. The column is
+/// floor((x - x_min) / cell_size) clamped to the last column, so x == x_max belongs to the grid.
+inline int2 neighbour_cell_of(__constant const NeighbourGridParams* g, real x, real y) {
+  if (!(x >= g->x_min && x <= g->x_max && y >= g->y_min && y <= g->y_max)) return (int2)(-1, -1);
+  // Clamped before the conversion to int as well, so no huge quotient overflows it.
+  const real qx = min(floor((x - g->x_min) / g->cell_size), (real)(g->cells_x - 1));
+  const real qy = min(floor((y - g->y_min) / g->cell_size), (real)(g->cells_y - 1));
+  return (int2)(min((int)qx, g->cells_x - 1), min((int)qy, g->cells_y - 1));
+}
+
+/// Row-major key of cell (cx, cy) of the grid.
+inline uint neighbour_cell_key(__constant const NeighbourGridParams* g, int cx, int cy) {
+  return (uint)cy * (uint)g->cells_x + (uint)cx;
+}
+
+/// Key of the cell holding a position, CELL_KEY_OUTSIDE outside the box.
+inline uint neighbour_key_of(__constant const NeighbourGridParams* g, real x, real y) {
+  const int2 c = neighbour_cell_of(g, x, y);
+  return c.x < 0 ? CELL_KEY_OUTSIDE : neighbour_cell_key(g, c.x, c.y);
+}
+
+/// The cells to visit for the neighbours of a particle at (x, y) (see the loop in the header).
+inline NeighbourCellRange neighbour_cells_around(__constant const NeighbourGridParams* g, real x, real y) {
+  const int2 c = neighbour_cell_of(g, x, y);
+  NeighbourCellRange r;
+  if (c.x < 0) {
+    r.x0 = 0, r.x1 = -1, r.y0 = 0, r.y1 = -1;
+    return r;
+  }
+  r.x0 = max(c.x - 1, 0);
+  r.x1 = min(c.x + 1, g->cells_x - 1);
+  r.y0 = max(c.y - 1, 0);
+  r.y1 = min(c.y + 1, g->cells_y - 1);
+  return r;
+}
+
+#endif
