@@ -1,0 +1,55 @@
+// Parameter block and terrain sampling shared by the particle kernels of the hybrid mode (spec §5;
+// mirrored by src/particles/ParticleParams.hpp). Particles live in the terrain grid's frame: cell
+// (i, j) spans [i dx, (i + 1) dx) x [j dx, (j + 1) dx), its centre at ((i + 1/2) dx, (j + 1/2) dx).
+#ifndef TALUS_PARTICLE_COMMON_CL
+#define TALUS_PARTICLE_COMMON_CL
+#include "common/real.cl"
+#include "particles/neighbours.cl"
+#include "particles/sph.cl"
+
+#define PARTICLE_EARTH_SAVAGE_HUTTER 0
+#define PARTICLE_EARTH_CONSTANT 1
+
+typedef struct {
+  int nx, ny;             // terrain grid
+  int count;              // particles in the arrays (alive ones first after each sort)
+  int earth_pressure;     // PARTICLE_EARTH_*
+  real dx;                // terrain cell [m]
+  real h;                 // SPH smoothing length [m] (support 2h)
+  real shear_modulus;     // G [Pa]
+  real bulk_modulus;      // K [Pa]
+  real sound_speed;       // c of the artificial viscosity [m/s]
+  real alpha_pi, beta_pi; // Monaghan artificial viscosity constants (P.83-P.84)
+  real eps_art;           // Gray-Monaghan artificial stress epsilon_0 (P.85-P.86)
+  real n_art;             // its exponent n
+  real w_spacing;         // W(mean particle spacing, h), the reference of f_ij = W_ij / W(dp)
+  real dilatancy;         // psi [rad]
+  real eps_crit;          // critical strain epsilon_c of the cohesion degradation (P.26)
+  real k_const;           // constant earth-pressure coefficient
+  real pore_b;            // basal pore-pressure factor B (P.39)
+  real pad0, pad1;
+} ParticleParams;
+
+/// Bilinear interpolation of a cell-centred terrain field at (x, y); the four cells are clamped to
+/// the raster (values of nodata cells are whatever the host stored there: it stores the nearest
+/// valid value).
+inline real terrain_sample(__constant const ParticleParams* p, __global const real* f, real x, real y) {
+  const real fx = x / p->dx - (real)0.5, fy = y / p->dx - (real)0.5;
+  const real ix = floor(fx), iy = floor(fy);
+  const real tx = fx - ix, ty = fy - iy;
+  const int i0 = clamp((int)ix, 0, p->nx - 1), i1 = clamp((int)ix + 1, 0, p->nx - 1);
+  const int j0 = clamp((int)iy, 0, p->ny - 1), j1 = clamp((int)iy + 1, 0, p->ny - 1);
+  const real a = f[j0 * p->nx + i0] + tx * (f[j0 * p->nx + i1] - f[j0 * p->nx + i0]);
+  const real b = f[j1 * p->nx + i0] + tx * (f[j1 * p->nx + i1] - f[j1 * p->nx + i0]);
+  return a + ty * (b - a);
+}
+
+/// Index of the terrain cell holding (x, y), or -1 outside the raster.
+inline int terrain_cell(__constant const ParticleParams* p, real x, real y) {
+  if (!(x >= (real)0 && y >= (real)0)) return -1;
+  const real fx = floor(x / p->dx), fy = floor(y / p->dx);
+  if (fx >= (real)p->nx || fy >= (real)p->ny) return -1;
+  return (int)fy * p->nx + (int)fx;
+}
+
+#endif

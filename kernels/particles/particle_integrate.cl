@@ -1,0 +1,56 @@
+// Terrain forces and the symplectic update of the particles (spec §5): bed-slope gravity -g_n grad b
+// (horizontal projection, as the grid model), basal Coulomb friction tan(delta) (1 - B gamma) g_n
+// applied implicitly (it stops a particle but never reverses it; gamma = 0 for dry particles), then
+// v <- v + dt a, x <- x + dt v (symplectic Euler). A particle that leaves the raster or enters a
+// nodata cell is removed: its mass goes to `out_mass` (tallied by the host as outflow), its
+// position becomes NaN (it sorts behind every live particle at the next neighbour build) and its
+// mass zero.
+#include "particles/particle_common.cl"
+
+__kernel void particle_integrate(__constant const ParticleParams* p, __global const uchar* mask,
+                                 __global const real* grad_x, __global const real* grad_y, __global const real* gn,
+                                 __global real* x, __global real* y, __global real* vx, __global real* vy,
+                                 __global real* m, __global const real* delta, __global const real* ax,
+                                 __global const real* ay, __global real* out_mass, const real dt) {
+  const int i = get_global_id(0);
+  if (i >= p->count) return;
+  out_mass[i] = 0;
+  if (!(m[i] > (real)0)) return;
+  const real xi = x[i], yi = y[i];
+  const real g = terrain_sample(p, gn, xi, yi);
+  const real bx = terrain_sample(p, grad_x, xi, yi), by = terrain_sample(p, grad_y, xi, yi);
+  real ux = vx[i] + dt * (ax[i] - g * bx), uy = vy[i] + dt * (ay[i] - g * by);
+  const real speed = sqrt(ux * ux + uy * uy);
+  const real stop = dt * tan(delta[i]) * g;
+  if (speed <= stop) {
+    ux = uy = 0;
+  } else {
+    const real f = (real)1 - stop / speed;
+    ux *= f;
+    uy *= f;
+  }
+  const real xn = xi + dt * ux, yn = yi + dt * uy;
+  const int cell = terrain_cell(p, xn, yn);
+  if (cell < 0 || !mask[cell]) {
+    out_mass[i] = m[i];
+    m[i] = 0;
+    x[i] = y[i] = NAN;
+    vx[i] = vy[i] = 0;
+    return;
+  }
+  vx[i] = ux;
+  vy[i] = uy;
+  x[i] = xn;
+  y[i] = yn;
+}
+
+/// Per-particle rows for the diagnostics (rows of `stride` entries): |v|, m |v|^2 / 2, m.
+__kernel void particle_totals(__constant const ParticleParams* p, __global const real* vx, __global const real* vy,
+                              __global const real* m, __global real* rows, const int stride) {
+  const int i = get_global_id(0);
+  if (i >= p->count) return;
+  const real v2 = vx[i] * vx[i] + vy[i] * vy[i];
+  rows[i] = sqrt(v2);
+  rows[stride + i] = (real)0.5 * m[i] * v2;
+  rows[2 * stride + i] = m[i];
+}

@@ -1,0 +1,83 @@
+// Stress of the particles over one sub-step (spec §5, OpenLISEM Hazard P.79-P.82, P.26, P.41-P.43):
+// 1. velocity gradient L_i = [sum_j V_j (v_j - v_i) (x) grad_i W_ij] M_i^-1, V_j = m_j / rhoA_j (the
+//    area a particle stands for), with the kernel-gradient correction M_i = sum_j V_j (x_j - x_i) (x)
+//    grad_i W_ij (Bonet & Lok 1999), which makes L exact for linear velocity fields also at free
+//    edges; where M is near singular (fewer than three neighbours in general position) no
+//    correction is applied;
+// 2. the elasto-plastic update of the in-plane elastic stress (Jaumann rate, Drucker-Prager return,
+//    cohesion degradation and the fractions that follow the bonds: particle_material.cl) with the
+//    Bell-Rankine lateral stress sigma_lat = -max(0, K p_zz - 2 c sqrt(K)), p_zz = rho g_n H / 2,
+//    added to both normal components for the yield check (the total in-plane stress is
+//    sigma + sigma_lat I) and the vertical stress sigma_zz = -p_zz (P.41);
+// 3. the depth-integrated stress N = H (sigma + sigma_lat I) used by particle_forces.
+// K: Savage-Hutter active (the particle's velocity field extends, tr L > 0) or passive, from phi and
+// delta, or constant.
+#include "particles/particle_material.cl"
+
+inline real particle_earth_pressure(__constant const ParticleParams* p, real phi, real delta, real divergence) {
+  if (p->earth_pressure == PARTICLE_EARTH_CONSTANT) return p->k_const;
+  const real cp = cos(phi), cd = cos(delta);
+  const real root = sqrt(fmax((real)0, (real)1 - cp * cp / (cd * cd)));
+  return (real)2 / (cp * cp) * ((real)1 + (divergence < (real)0 ? root : -root)) - (real)1;
+}
+
+__kernel void particle_stress(__constant const ParticleParams* p, __constant const NeighbourGridParams* ng,
+                              __global const uint* cell_start, __global const uint* cell_end,
+                              __global const real* x, __global const real* y, __global const real* vx,
+                              __global const real* vy, __global const real* m, __global const real* rhoA,
+                              __global const real* H, __global const real* rho, __global const real* gn,
+                              __global const real* phi, __global const real* delta, __global real* sxx,
+                              __global real* syy, __global real* sxy, __global real* coh,
+                              __global const real* coh0, __global real* plastic, __global real* Nxx,
+                              __global real* Nyy, __global real* Nxy, const real dt) {
+  const int i = get_global_id(0);
+  if (i >= p->count) return;
+  const real h = p->h, r2max = (real)4 * h * h;
+  const real xi = x[i], yi = y[i], vxi = vx[i], vyi = vy[i];
+  real g00 = 0, g01 = 0, g10 = 0, g11 = 0;  // sum V_j (v_j - v_i) (x) grad W
+  real m00 = 0, m01 = 0, m10 = 0, m11 = 0;  // sum V_j (x_j - x_i) (x) grad W
+  const NeighbourCellRange cells = neighbour_cells_around(ng, xi, yi);
+  for (int cy = cells.y0; cy <= cells.y1; ++cy)
+    for (int cx = cells.x0; cx <= cells.x1; ++cx) {
+      const uint c = neighbour_cell_key(ng, cx, cy);
+      for (uint j = cell_start[c]; j < cell_end[c]; ++j) {
+        if (j == (uint)i) continue;
+        const real dx = xi - x[j], dy = yi - y[j], r2 = dx * dx + dy * dy;
+        if (r2 >= r2max) continue;
+        const real2 gw = sph_grad((real2)(dx, dy), h);
+        const real V = m[j] / rhoA[j];
+        const real du = vx[j] - vxi, dv = vy[j] - vyi;
+        g00 += V * du * gw.x;
+        g01 += V * du * gw.y;
+        g10 += V * dv * gw.x;
+        g11 += V * dv * gw.y;
+        m00 -= V * dx * gw.x;
+        m01 -= V * dx * gw.y;
+        m10 -= V * dy * gw.x;
+        m11 -= V * dy * gw.y;
+      }
+    }
+  // L = G M^-1 when M is well conditioned (det above 1e-3 of its value for a full support, ~1).
+  real L00 = g00, L01 = g01, L10 = g10, L11 = g11;
+  const real det = m00 * m11 - m01 * m10;
+  if (fabs(det) > (real)1e-3) {
+    const real i00 = m11 / det, i01 = -m01 / det, i10 = -m10 / det, i11 = m00 / det;
+    L00 = g00 * i00 + g01 * i10;
+    L01 = g00 * i01 + g01 * i11;
+    L10 = g10 * i00 + g11 * i10;
+    L11 = g10 * i01 + g11 * i11;
+  }
+  const real Hi = H[i], rhoi = rho[i];
+  const real pzz = (real)0.5 * rhoi * terrain_sample(p, gn, xi, yi) * Hi;
+  const real K = particle_earth_pressure(p, phi[i], delta[i], L00 + L11);
+  MaterialState s = {sxx[i], syy[i], sxy[i], coh[i], plastic[i]};
+  const real lat = particle_material_update(p, &s, L00, L01, L10, L11, pzz, K, phi[i], coh0[i], dt);
+  sxx[i] = s.sxx;
+  syy[i] = s.syy;
+  sxy[i] = s.sxy;
+  coh[i] = s.c;
+  plastic[i] = s.plastic;
+  Nxx[i] = Hi * (s.sxx + lat);
+  Nyy[i] = Hi * (s.syy + lat);
+  Nxy[i] = Hi * s.sxy;
+}

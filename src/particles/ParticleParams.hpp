@@ -1,0 +1,22 @@
+// Host mirror of the particle kernels' ParticleParams block (kernels/particles/particle_common.cl).
+#pragma once
+#include <cstddef>
+#include <cstdint>
+
+namespace talus::particles {
+
+template <class Real>
+struct ParticleParamsT {
+  int32_t nx, ny;
+  int32_t count;
+  int32_t earthPressure;  // 0 Savage-Hutter active/passive, 1 constant
+  Real dx, h, shearModulus, bulkModulus, soundSpeed, alphaPi, betaPi, epsArt, nArt, wSpacing, dilatancy, epsCrit,
+      kConst, poreB, pad0, pad1;
+};
+
+// The OpenCL C struct has the same member order; both layouts must match byte for byte.
+static_assert(offsetof(ParticleParamsT<float>, dx) == 16 && sizeof(ParticleParamsT<float>) == 80, "ParticleParams<float>");
+static_assert(offsetof(ParticleParamsT<double>, dx) == 16 && sizeof(ParticleParamsT<double>) == 144,
+              "ParticleParams<double>");
+
+}  // namespace talus::particles

@@ -1,0 +1,27 @@
+// Options of the particle (hybrid MPM/SPH) mode, spec §5, with their run-file defaults.
+#pragma once
+
+namespace talus::particles {
+
+enum class ParticleEarthPressure { SavageHutter = 0, Constant = 1 };
+
+struct ParticleSettings {
+  double youngModulus = 1e7;     ///< E [Pa]
+  double poisson = 0.3;          ///< nu [-]
+  double soundSpeed = 0;         ///< c_sound [m/s] for the time step and artificial viscosity; 0: elastic c_p
+  double smoothingFactor = 1.0;  ///< h = smoothingFactor * dx (paper: h = dx)
+  double cfl = 0.2;              ///< dt_p = cfl h / (c + |v|max)
+  double alphaPi = 1.0, betaPi = 1.0;  ///< Monaghan artificial viscosity (P.83-P.84)
+  double epsArt = 0.3;           ///< Gray-Monaghan artificial stress epsilon_0 (P.85)
+  double nArt = 4;               ///< its exponent n
+  double dilatancy = 0;          ///< psi [rad]
+  double epsCrit = 0.1;          ///< critical strain of the cohesion degradation (P.26)
+  double poreB = 1.0;            ///< basal pore-pressure factor B (P.39)
+  ParticleEarthPressure earthPressure = ParticleEarthPressure::Constant;
+  double kConst = 1.0;
+
+  double shearModulus() const { return youngModulus / (2 * (1 + poisson)); }
+  double bulkModulus() const { return youngModulus / (3 * (1 - 2 * poisson)); }
+};
+
+}  // namespace talus::particles

@@ -1,0 +1,260 @@
+#include "particles/ParticleSolver.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "compute/Program.hpp"
+#include "core/Constants.hpp"
+#include "core/Error.hpp"
+#include "flow/SlopeGravity.hpp"
+#include "particles/ParticleParams.hpp"
+
+namespace talus::particles {
+namespace {
+
+/// Centred bed gradient per cell (one-sided next to nodata cells and the raster edge, 0 where a
+/// cell has no valid neighbour along a direction); nodata cells get 0.
+void bedGradient(const Grid& g, const std::vector<double>& bed, const std::vector<uint8_t>& mask,
+                 std::vector<double>& gx, std::vector<double>& gy) {
+  gx.assign(g.cells(), 0.0);
+  gy.assign(g.cells(), 0.0);
+  auto valid = [&](int i, int j) { return i >= 0 && j >= 0 && i < g.nx && j < g.ny && mask[g.index(i, j)]; };
+  for (int j = 0; j < g.ny; ++j)
+    for (int i = 0; i < g.nx; ++i) {
+      if (!valid(i, j)) continue;
+      const double b0 = bed[g.index(i, j)];
+      auto diff = [&](int di, int dj) {
+        const bool m = valid(i - di, j - dj), p = valid(i + di, j + dj);
+        if (m && p) return (bed[g.index(i + di, j + dj)] - bed[g.index(i - di, j - dj)]) / (2 * g.dx);
+        if (p) return (bed[g.index(i + di, j + dj)] - b0) / g.dx;
+        if (m) return (b0 - bed[g.index(i - di, j - dj)]) / g.dx;
+        return 0.0;
+      };
+      gx[g.index(i, j)] = diff(1, 0);
+      gy[g.index(i, j)] = diff(0, 1);
+    }
+}
+
+template <class Real>
+void fillParams(compute::RawBuffer& buf, const Grid& g, const ParticleSettings& s, double h, std::size_t count,
+                double soundSpeed, double wSpacing) {
+  ParticleParamsT<Real> p{};
+  p.nx = g.nx;
+  p.ny = g.ny;
+  p.count = static_cast<int32_t>(count);
+  p.earthPressure = static_cast<int32_t>(s.earthPressure);
+  p.dx = static_cast<Real>(g.dx);
+  p.h = static_cast<Real>(h);
+  p.shearModulus = static_cast<Real>(s.shearModulus());
+  p.bulkModulus = static_cast<Real>(s.bulkModulus());
+  p.soundSpeed = static_cast<Real>(soundSpeed);
+  p.alphaPi = static_cast<Real>(s.alphaPi);
+  p.betaPi = static_cast<Real>(s.betaPi);
+  p.epsArt = static_cast<Real>(s.epsArt);
+  p.nArt = static_cast<Real>(s.nArt);
+  p.wSpacing = static_cast<Real>(wSpacing);
+  p.dilatancy = static_cast<Real>(s.dilatancy);
+  p.epsCrit = static_cast<Real>(s.epsCrit);
+  p.kConst = static_cast<Real>(s.kConst);
+  p.poreB = static_cast<Real>(s.poreB);
+  buf.writeBytes(&p, sizeof p);
+}
+
+/// The 2D cubic spline W(r, h) (kernels/particles/sph.cl) on the host, for W(dp).
+double splineW(double r, double h) {
+  const double q = r / h, s = 10.0 / (7.0 * 3.14159265358979323846 * h * h);
+  if (q < 1) return s * (1 - 1.5 * q * q + 0.75 * q * q * q);
+  if (q < 2) return s * 0.25 * (2 - q) * (2 - q) * (2 - q);
+  return 0;
+}
+
+std::vector<double> perParticle(const std::vector<double>& v, std::size_t n, const char* what) {
+  if (v.size() == n) return v;
+  if (v.size() == 1) return std::vector<double>(n, v[0]);
+  throw InputError(std::string("particle material '") + what + "' has " + std::to_string(v.size()) +
+                   " values for " + std::to_string(n) + " particles");
+}
+
+}  // namespace
+
+ParticleSolver::ParticleSolver(compute::Context& ctx, const Grid& grid, const ParticleTerrain& terrain,
+                               const ParticleSettings& settings)
+    : ctx_(ctx), grid_(grid), settings_(settings), reducer_(ctx) {
+  const std::size_t n = grid.cells();
+  if (terrain.mask.size() != n || terrain.bed.size() != n)
+    throw InputError("particle terrain: mask and bed must have " + std::to_string(n) + " cells");
+  if (!(settings.smoothingFactor > 0) || !(settings.cfl > 0 && settings.cfl <= 1) || !(settings.youngModulus > 0) ||
+      !(settings.poisson > -1 && settings.poisson < 0.5))
+    throw InputError("particle settings: smoothing factor > 0, CFL in (0, 1], E > 0 and Poisson ratio in (-1, 0.5) required");
+  h_ = settings.smoothingFactor * grid.dx;
+  flow::FlowSettings fs;
+  fs.slopeCorrection = terrain.slopeCorrection;
+  const flow::SlopeGravity sg = flow::computeSlopeGravity(grid, terrain.bed, terrain.mask, fs);
+  std::vector<double> gx, gy;
+  bedGradient(grid, terrain.bed, terrain.mask, gx, gy);
+  std::vector<double> gn = sg.gn;
+  for (std::size_t k = 0; k < n; ++k)
+    if (!terrain.mask[k]) gn[k] = kGravity;
+  mask_ = compute::Buffer<uint8_t>(ctx, n, "particle terrain mask");
+  mask_.write(terrain.mask);
+  gradX_ = compute::RealBuffer(ctx, n, "bed gradient x");
+  gradY_ = compute::RealBuffer(ctx, n, "bed gradient y");
+  gn_ = compute::RealBuffer(ctx, n, "particle g_n");
+  gradX_.upload(gx);
+  gradY_.upload(gy);
+  gn_.upload(gn);
+  params_ = compute::RawBuffer(ctx, sizeof(ParticleParamsT<double>), "particle parameters");
+  density_ = compute::Kernel(ctx.program("particles/particle_density.cl"), "particle_density");
+  stress_ = compute::Kernel(ctx.program("particles/particle_stress.cl"), "particle_stress");
+  forces_ = compute::Kernel(ctx.program("particles/particle_forces.cl"), "particle_forces");
+  integrate_ = compute::Kernel(ctx.program("particles/particle_integrate.cl"), "particle_integrate");
+  speedKernel_ = compute::Kernel(ctx.program("particles/particle_integrate.cl"), "particle_totals");
+  // The neighbour grid covers the raster with a margin of one support, so particles near the edge
+  // see all their neighbours; particles leave the raster through the integrate kernel.
+  const double r = 2 * h_;
+  neighbours_ = std::make_unique<NeighbourGrid>(ctx, DomainBox{-r, -r, grid.nx * grid.dx + r, grid.ny * grid.dx + r}, r);
+}
+
+void ParticleSolver::setParticles(const SeededParticles& seeded, const ParticleMaterial& material) {
+  const std::size_t n = seeded.size();
+  const std::vector<double> rho = perParticle(material.density, n, "density");
+  const std::vector<double> phi = perParticle(material.phi, n, "phi");
+  const std::vector<double> delta = perParticle(material.delta, n, "delta");
+  const std::vector<double> coh = perParticle(material.cohesion, n, "cohesion");
+  capacity_ = std::max<std::size_t>(n, 1);
+  count_ = n;
+  auto make = [&](compute::RealBuffer& b, const char* label) { b = compute::RealBuffer(ctx_, capacity_, label); };
+  make(x_, "particle x"), make(y_, "particle y"), make(vx_, "particle vx"), make(vy_, "particle vy");
+  make(m_, "particle mass"), make(rho_, "particle density"), make(phi_, "particle phi"), make(delta_, "particle delta");
+  make(coh_, "particle cohesion"), make(coh0_, "particle initial cohesion"), make(sxx_, "particle sxx");
+  make(syy_, "particle syy"), make(sxy_, "particle sxy"), make(plastic_, "particle plastic strain");
+  make(rhoA_, "particle areal density"), make(H_, "particle thickness"), make(Nxx_, "particle Nxx");
+  make(Nyy_, "particle Nyy"), make(Nxy_, "particle Nxy"), make(ax_, "particle ax"), make(ay_, "particle ay");
+  make(outMass_, "particle outflow");
+  speed_ = compute::RealBuffer(ctx_, 3 * capacity_, "particle totals");
+  if (n == 0) {
+    writeParams();
+    updateDiagnostics();
+    return;
+  }
+  const std::vector<double> zero(n, 0.0);
+  x_.upload(seeded.x), y_.upload(seeded.y), vx_.upload(zero), vy_.upload(zero), m_.upload(seeded.mass);
+  rho_.upload(rho), phi_.upload(phi), delta_.upload(delta), coh_.upload(coh), coh0_.upload(coh);
+  sxx_.upload(zero), syy_.upload(zero), sxy_.upload(zero), plastic_.upload(zero);
+  std::vector<uint32_t> cells = seeded.cell;
+  std::sort(cells.begin(), cells.end());
+  const double seededCells = static_cast<double>(std::unique(cells.begin(), cells.end()) - cells.begin());
+  spacing_ = grid_.dx * std::sqrt(seededCells / static_cast<double>(n));
+  const double rhoMin = *std::min_element(rho.begin(), rho.end());
+  const double elastic = std::sqrt((settings_.bulkModulus() + 4.0 / 3.0 * settings_.shearModulus()) / rhoMin);
+  waveSpeed_ = settings_.soundSpeed > 0 ? settings_.soundSpeed : elastic;
+  writeParams();
+  updateDiagnostics();
+}
+
+void ParticleSolver::setVelocities(const std::vector<double>& vx, const std::vector<double>& vy) {
+  if (vx.size() != count_ || vy.size() != count_) throw InputError("particle velocities: wrong count");
+  if (count_ == 0) return;
+  vx_.upload(vx);
+  vy_.upload(vy);
+  updateDiagnostics();
+}
+
+void ParticleSolver::writeParams() {
+  // The artificial stress scales with f_ij = W_ij / W(dp), dp the mean particle spacing: f = 1 for
+  // a neighbour at the typical distance (with dp = h instead, f^4 reaches 67 for the 2 x 2 particles
+  // per cell and the "correction" flips the sign of the stress: a blow-up from round-off).
+  const double w = splineW(spacing_, h_);
+  if (ctx_.precision() == compute::Precision::Double)
+    fillParams<double>(params_, grid_, settings_, h_, count_, waveSpeed_, w);
+  else
+    fillParams<float>(params_, grid_, settings_, h_, count_, waveSpeed_, w);
+}
+
+double ParticleSolver::stableSubStep() {
+  if (count_ == 0) return std::numeric_limits<double>::infinity();
+  return settings_.cfl * h_ / (waveSpeed_ + diag_.maxSpeed);
+}
+
+void ParticleSolver::step(double dt) {
+  if (!(dt > 0)) throw SimulationError("particle step: dt must be positive");
+  diag_.outflowMass = 0;
+  diag_.subSteps = 0;
+  double done = 0;
+  while (done < dt && count_ > 0) {
+    const double remaining = dt - done;
+    const double sub = std::min(remaining, stableSubStep());
+    const int k = static_cast<int>(std::ceil(remaining / sub - 1e-12));
+    const double ds = remaining / std::max(k, 1);
+    subStep(ds);
+    done += ds;
+    ++diag_.subSteps;
+    if (k <= 1) break;
+  }
+  time_ += dt;
+  updateDiagnostics();
+}
+
+void ParticleSolver::reorderAll() {
+  for (compute::RealBuffer* f : {&x_, &y_, &vx_, &vy_, &m_, &rho_, &phi_, &delta_, &coh_, &coh0_, &sxx_, &syy_, &sxy_,
+                                 &plastic_})
+    neighbours_->reorder(*f);
+}
+
+void ParticleSolver::subStep(double ds) {
+  NeighbourGrid& ng = *neighbours_;
+  ng.build(x_, y_, count_);
+  reorderAll();
+  const std::size_t inside = ng.readInsideCount();
+  if (inside != count_) {
+    count_ = inside;  // removed particles (NaN positions) sorted behind the live ones
+    writeParams();
+  }
+  if (count_ == 0) return;
+  const compute::Range global{count_};
+  density_.bind(params_, ng.params(), ng.cellStart(), ng.cellEnd(), x_, y_, m_, rho_, rhoA_, H_);
+  density_.launch(global, {0, 0}, "particle_density");
+  stress_.bind(params_, ng.params(), ng.cellStart(), ng.cellEnd(), x_, y_, vx_, vy_, m_, rhoA_, H_, rho_, gn_, phi_,
+               delta_, sxx_, syy_, sxy_, coh_, coh0_, plastic_, Nxx_, Nyy_, Nxy_, compute::RealArg{ds});
+  stress_.launch(global, {0, 0}, "particle_stress");
+  forces_.bind(params_, ng.params(), ng.cellStart(), ng.cellEnd(), x_, y_, vx_, vy_, m_, rhoA_, Nxx_, Nyy_, Nxy_, ax_,
+               ay_);
+  forces_.launch(global, {0, 0}, "particle_forces");
+  integrate_.bind(params_, mask_, gradX_, gradY_, gn_, x_, y_, vx_, vy_, m_, delta_, ax_, ay_, outMass_,
+                  compute::RealArg{ds});
+  integrate_.launch(global, {0, 0}, "particle_integrate");
+  diag_.outflowMass += reducer_.sum(outMass_, count_);
+}
+
+void ParticleSolver::updateDiagnostics() {
+  diag_.count = count_;
+  if (count_ == 0) {
+    diag_.mass = diag_.kinetic = diag_.maxSpeed = 0;
+    return;
+  }
+  speedKernel_.bind(params_, vx_, vy_, m_, speed_, static_cast<int>(capacity_));
+  speedKernel_.launch(compute::Range{count_}, {0, 0}, "particle_totals");
+  const std::vector<double> r = reducer_.reduceRows(
+      speed_, count_, {compute::ReduceOp::Max, compute::ReduceOp::Sum, compute::ReduceOp::Sum}, capacity_);
+  diag_.maxSpeed = r[0];
+  diag_.kinetic = r[1];
+  diag_.mass = r[2];
+}
+
+ParticleState ParticleSolver::state() const {
+  ParticleState s;
+  if (count_ == 0) return s;
+  auto get = [&](const compute::RealBuffer& b) {
+    std::vector<double> v = b.download();
+    v.resize(count_);
+    return v;
+  };
+  s.x = get(x_), s.y = get(y_), s.vx = get(vx_), s.vy = get(vy_), s.mass = get(m_);
+  s.sxx = get(sxx_), s.syy = get(syy_), s.sxy = get(sxy_), s.cohesion = get(coh_), s.cohesion0 = get(coh0_);
+  s.plastic = get(plastic_), s.H = get(H_);
+  return s;
+}
+
+}  // namespace talus::particles

@@ -1,0 +1,100 @@
+// The particle (hybrid MPM/SPH) solver of structured solids on the device (spec §5): particles seeded
+// from the initial rasters, each sub-step
+//   neighbour grid (sort, tables, reorder) -> areal density and thickness -> velocity gradient and
+//   stress (Jaumann, Drucker-Prager, cohesion degradation) -> internal forces (stress, artificial
+//   viscosity and stress) -> terrain forces, friction, symplectic update, removal at the domain edge,
+// with the sub-step dt_p = CFL h / (c + |v|max) from the elastic wave speed (multi-rate: step(dt)
+// takes as many sub-steps as dt needs).
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "compute/Buffer.hpp"
+#include "compute/Context.hpp"
+#include "compute/Kernel.hpp"
+#include "compute/Reducer.hpp"
+#include "core/Grid.hpp"
+#include "particles/NeighbourGrid.hpp"
+#include "particles/ParticleSeeding.hpp"
+#include "particles/ParticleSettings.hpp"
+
+namespace talus::particles {
+
+/// Terrain the particles move on (row-major on `grid`).
+struct ParticleTerrain {
+  std::vector<uint8_t> mask;  ///< 1 inside the domain
+  std::vector<double> bed;    ///< b [m]
+  bool slopeCorrection = true;  ///< g_n = g cos^2(theta) (spec §1)
+};
+
+/// Per-particle material (one value per seeded particle, or one value for all when of size 1).
+struct ParticleMaterial {
+  std::vector<double> density;   ///< rho_c [kg/m^3]
+  std::vector<double> phi;       ///< internal friction angle [rad]
+  std::vector<double> delta;     ///< bed friction angle [rad]
+  std::vector<double> cohesion;  ///< initial cohesion c0 [Pa]
+};
+
+/// Host copy of the particle state (live particles only, in the solver's current order).
+struct ParticleState {
+  std::vector<double> x, y, vx, vy, mass, sxx, syy, sxy, cohesion, cohesion0, plastic, H;
+  std::size_t size() const { return x.size(); }
+};
+
+struct ParticleDiagnostics {
+  std::size_t count = 0;       ///< live particles
+  double mass = 0;             ///< [kg]
+  double outflowMass = 0;      ///< mass removed at the domain edge in the last step [kg]
+  double kinetic = 0;          ///< [J]
+  double maxSpeed = 0;         ///< [m/s]
+  int subSteps = 0;            ///< sub-steps of the last step
+};
+
+class ParticleSolver {
+ public:
+  ParticleSolver(compute::Context& ctx, const Grid& grid, const ParticleTerrain& terrain, const ParticleSettings& settings);
+
+  /// Uploads particles (positions, masses, volumes from the seeding) with their material, at rest
+  /// and stress free (the lateral push is the Bell-Rankine term).
+  void setParticles(const SeededParticles& seeded, const ParticleMaterial& material);
+  /// Sets the particle velocities (host order of setParticles / state()).
+  void setVelocities(const std::vector<double>& vx, const std::vector<double>& vy);
+
+  /// Largest stable sub-step for the current state [s].
+  double stableSubStep();
+  /// Advances by dt in ceil(dt / stableSubStep()) equal sub-steps (re-evaluated each sub-step).
+  void step(double dt);
+
+  const ParticleDiagnostics& diagnostics() const { return diag_; }
+  ParticleState state() const;
+  std::size_t count() const { return count_; }
+  double smoothingLength() const { return h_; }
+  double time() const { return time_; }
+
+ private:
+  void subStep(double dt);
+  void writeParams();
+  void reorderAll();
+  void updateDiagnostics();
+
+  compute::Context& ctx_;
+  Grid grid_;
+  ParticleSettings settings_;
+  double h_ = 0, time_ = 0, waveSpeed_ = 0;
+  double spacing_ = 1;  ///< mean particle spacing dp [m] (seeded cells' area / particles)
+  std::size_t count_ = 0, capacity_ = 0;
+  ParticleDiagnostics diag_;
+  std::unique_ptr<NeighbourGrid> neighbours_;
+  compute::Reducer reducer_;
+  compute::RawBuffer params_;
+  compute::Buffer<uint8_t> mask_;
+  compute::RealBuffer gradX_, gradY_, gn_;
+  // Particle fields (reordered together at every neighbour build).
+  compute::RealBuffer x_, y_, vx_, vy_, m_, rho_, phi_, delta_, coh_, coh0_, sxx_, syy_, sxy_, plastic_;
+  // Per sub-step scratch (not reordered).
+  compute::RealBuffer rhoA_, H_, Nxx_, Nyy_, Nxy_, ax_, ay_, outMass_, speed_;
+  compute::Kernel density_, stress_, forces_, integrate_, speedKernel_;
+};
+
+}  // namespace talus::particles
