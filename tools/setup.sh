@@ -11,10 +11,10 @@ packages=(
   ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers pocl-opencl-icd clinfo
   # raster I/O and linear algebra
   libgdal-dev gdal-bin libeigen3-dev
-  # desktop application (Qt 5 + OpenGL)
-  qtbase5-dev libqt5opengl5-dev libglew-dev
-  # tests, headless display for GUI tests
-  libgtest-dev googletest xvfb xauth
+  # desktop application (Qt 5 + OpenGL; Mesa's llvmpipe gives OpenGL 3.3 core without a GPU)
+  qtbase5-dev libqt5opengl5-dev libglew-dev libgl1-mesa-dri
+  # tests, headless display for GUI tests (mesa-utils: glxinfo, to check the OpenGL version)
+  libgtest-dev googletest xvfb xauth mesa-utils
   # scene tools (tools/make_example_scene.py)
   python3 python3-numpy python3-gdal
   # fuzzing (tools/fuzz.sh): clang with libFuzzer and the sanitizer runtimes; llvm-symbolizer

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Sets up, builds and runs the whole test suite (labels unit, kernels, verification, stress) on the
+# Sets up, builds and runs the whole test suite (labels unit, kernels, verification, stress, and gui
+# under xvfb-run when the desktop application is built) on the
 # available OpenCL device (PoCL's CPU device on a machine without a GPU). With full checks on (in CI,
 # CI=true, or TALUS_FULL_CHECKS=1) it then also runs the suite under ASan/UBSan (tools/sanitize.sh)
 # and each fuzz target for 45 s (tools/fuzz.sh 45); TALUS_FULL_CHECKS=0 turns them off.
@@ -32,6 +33,17 @@ fi
 rc=0
 ctest --test-dir "$build_dir" --output-on-failure --no-tests=error --timeout 900 \
   -j "${TALUS_TEST_JOBS:-1}" -L 'unit|kernels|verification|stress' || rc=$?
+
+# The desktop application's tests (label gui) need a display: a virtual one from xvfb-run.
+if [[ -f "$build_dir/tests/talus_gui_tests" ]]; then
+  if command -v xvfb-run >/dev/null 2>&1; then
+    xvfb-run -a -s "-screen 0 1600x1000x24" \
+      ctest --test-dir "$build_dir" --output-on-failure --no-tests=error --timeout 900 -L gui || rc=$?
+  else
+    echo "test: xvfb-run is missing (apt-get install xvfb xauth); cannot run the gui tests" >&2
+    rc=1
+  fi
+fi
 
 if (( rc != 0 )); then
   echo "test: FAILED (ctest exit status $rc)" >&2

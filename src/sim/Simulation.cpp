@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <algorithm>
 #include <sstream>
+#include <stdexcept>
 
 #include "core/Error.hpp"
 #include "sim/Checkpoint.hpp"
@@ -105,79 +106,105 @@ void Simulation::writeCheckpoint(double wallSeconds) {
   ++checkpoints_;
 }
 
+double Simulation::wall() const {
+  return wallBefore_ + std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+}
+
 RunSummary Simulation::run(const std::function<void(const Progress&)>& onProgress) {
-  using Clock = std::chrono::steady_clock;
-  const auto start = Clock::now();
-  auto wall = [&] { return wallBefore_ + std::chrono::duration<double>(Clock::now() - start).count(); };
-  const double t0 = scene_.startTime, tEnd = scene_.endTime, interval = scene_.reportInterval;
+  begin();
+  while (!atEnd()) {
+    const Progress p = stepOnce();
+    if (onProgress) onProgress(p);
+  }
+  return finish();
+}
+
+void Simulation::begin() {
+  if (begun_) throw std::logic_error("Simulation::begin called twice");
+  begun_ = true;
+  start_ = std::chrono::steady_clock::now();
+  const double t0 = scene_.startTime;
   if (steps_ == 0) writeReport();
-  double nextReport = t0 + reportIndex_ * interval;
+  nextReport_ = t0 + reportIndex_ * scene_.reportInterval;
   const double ckInterval = scene_.checkpointInterval;
-  double nextCheckpoint = ckInterval > 0 ? t0 + (std::floor((solver_->time() - t0) / ckInterval) + 1) * ckInterval
-                                         : HUGE_VAL;
-  double lastCheckpointWall = wall();
+  nextCheckpoint_ = ckInterval > 0 ? t0 + (std::floor((solver_->time() - t0) / ckInterval) + 1) * ckInterval
+                                   : HUGE_VAL;
+  lastCheckpointWall_ = wall();
+}
+
+bool Simulation::atEnd() const { return !(solver_->time() < scene_.endTime * (1 - 1e-15)); }
+
+Progress Simulation::stepOnce() {
+  if (!begun_ || finished_) throw std::logic_error("Simulation::stepOnce outside begin() .. finish()");
+  const double t0 = scene_.startTime, tEnd = scene_.endTime, interval = scene_.reportInterval;
+  const double t = solver_->time();
+  // Land exactly on report and end times (spec §4: dt clipped to output times). Checkpoints are
+  // taken at the first step end after they are due, so they never change the time steps.
+  const double target = std::min(nextReport_, tEnd);
+  double dt = solver_->stableDt();
+  if (!(dt < target - t)) dt = target - t;
+  solver_->step(dt);
+  if (std::fabs(solver_->time() - target) <= 1e-12 * std::max(1.0, std::fabs(target))) solver_->setTime(target);
+  ++steps_;
+  const std::string problem = health_->check(*solver_, dt);
+  if (!problem.empty()) {
+    std::ostringstream o;
+    o << "simulation unstable at t = " << solver_->time() << " s (step " << steps_ << ", dt = " << dt
+      << " s): " << problem;
+    failure_ = o.str();
+    finalize(Ending::Failed);
+    throw SimulationError(failure_);
+  }
+  const flow::FlowDiagnostics& d = solver_->diagnostics();
+  totalOutflow_ += totalOutflow(d);
+  const double volume = totalVolume(d);
+  const double balance = initialVolume_ > 0 ? (volume + totalOutflow_ - initialVolume_) / initialVolume_ : 0;
+  // The single-phase diagnostics give kinetic energy per unit density; the two-phase ones joules.
+  const double kinetic = solver_->twoPhase() ? d.kinetic : scene_.settings.debris.fluidDensity * d.kinetic;
+  char line[512];
+  std::snprintf(line, sizeof line, "%lld,%.9g,%.6g,%.12g,%.6g,%.12g,%.3e,%.6g,%.6g,%.12g,%.12g,%.6g,%.6g,%.4f", steps_,
+                solver_->time(), dt, volume, totalOutflow(d), totalOutflow_, balance, kinetic, d.maxSpeed, d.volume,
+                d.volumeSolid, d.outflow, d.outflowSolid, wall());
+  out_->appendDiagnostics(kCsvHeader, line);
+  if (solver_->time() >= nextReport_ * (1 - 1e-15)) {
+    writeReport();
+    nextReport_ = t0 + reportIndex_ * interval;
+  }
+  const double ckInterval = scene_.checkpointInterval;
+  const bool simDue = solver_->time() >= nextCheckpoint_ * (1 - 1e-15);
+  const bool wallDue = scene_.checkpointWallInterval > 0 && wall() - lastCheckpointWall_ >= scene_.checkpointWallInterval;
+  if ((simDue || wallDue) && solver_->time() < tEnd * (1 - 1e-15)) {
+    writeCheckpoint(wall());
+    lastCheckpointWall_ = wall();
+  }
+  while (solver_->time() >= nextCheckpoint_ * (1 - 1e-15)) nextCheckpoint_ += ckInterval;
+  return {solver_->time(), t0, tEnd, steps_, wall(), dt, &d, volume, totalOutflow_, balance, kinetic};
+}
+
+RunSummary Simulation::finish() {
+  if (!begun_ || finished_) throw std::logic_error("Simulation::finish outside begin() .. finish()");
+  return finalize(atEnd() ? Ending::Completed : Ending::Stopped);
+}
+
+RunSummary Simulation::finalize(Ending ending) {
+  finished_ = true;
   RunSummary s;
   s.initialVolume = initialVolume_;
-  auto finish = [&](bool failed) {
-    s.steps = steps_;
-    s.totalOutflow = totalOutflow_;
-    s.wallSeconds = wall();
-    s.simulatedSeconds = solver_->time() - t0;
-    s.finalVolume = totalVolume(solver_->diagnostics());
-    s.cellUpdatesPerSecond = s.wallSeconds > 0 ? static_cast<double>(domainCells_) * s.steps / s.wallSeconds : 0;
-    s.volumeBalanceError =
-        s.initialVolume > 0 ? (s.finalVolume + s.totalOutflow - s.initialVolume) / s.initialVolume : 0.0;
-    s.checkpoints = checkpoints_;
-    writeFinal(s, failed);
-  };
-  while (solver_->time() < tEnd * (1 - 1e-15)) {
-    const double t = solver_->time();
-    // Land exactly on report and end times (spec §4: dt clipped to output times). Checkpoints are
-    // taken at the first step end after they are due, so they never change the time steps.
-    const double target = std::min(nextReport, tEnd);
-    double dt = solver_->stableDt();
-    if (!(dt < target - t)) dt = target - t;
-    solver_->step(dt);
-    if (std::fabs(solver_->time() - target) <= 1e-12 * std::max(1.0, std::fabs(target))) solver_->setTime(target);
-    ++steps_;
-    const std::string problem = health_->check(*solver_, dt);
-    if (!problem.empty()) {
-      std::ostringstream o;
-      o << "simulation unstable at t = " << solver_->time() << " s (step " << steps_ << ", dt = " << dt
-        << " s): " << problem;
-      failure_ = o.str();
-      finish(true);
-      throw SimulationError(failure_);
-    }
-    const flow::FlowDiagnostics& d = solver_->diagnostics();
-    totalOutflow_ += totalOutflow(d);
-    const double volume = totalVolume(d);
-    const double balance = initialVolume_ > 0 ? (volume + totalOutflow_ - initialVolume_) / initialVolume_ : 0;
-    // The single-phase diagnostics give kinetic energy per unit density; the two-phase ones joules.
-    const double kinetic = solver_->twoPhase() ? d.kinetic : scene_.settings.debris.fluidDensity * d.kinetic;
-    char line[512];
-    std::snprintf(line, sizeof line, "%lld,%.9g,%.6g,%.12g,%.6g,%.12g,%.3e,%.6g,%.6g,%.12g,%.12g,%.6g,%.6g,%.4f", steps_,
-                  solver_->time(), dt, volume, totalOutflow(d), totalOutflow_, balance, kinetic, d.maxSpeed, d.volume,
-                  d.volumeSolid, d.outflow, d.outflowSolid, wall());
-    out_->appendDiagnostics(kCsvHeader, line);
-    if (solver_->time() >= nextReport * (1 - 1e-15)) {
-      writeReport();
-      nextReport = t0 + reportIndex_ * interval;
-    }
-    const bool simDue = solver_->time() >= nextCheckpoint * (1 - 1e-15);
-    const bool wallDue = scene_.checkpointWallInterval > 0 && wall() - lastCheckpointWall >= scene_.checkpointWallInterval;
-    if ((simDue || wallDue) && solver_->time() < tEnd * (1 - 1e-15)) {
-      writeCheckpoint(wall());
-      lastCheckpointWall = wall();
-    }
-    while (solver_->time() >= nextCheckpoint * (1 - 1e-15)) nextCheckpoint += ckInterval;
-    if (onProgress) onProgress({solver_->time(), t0, tEnd, steps_, wall(), dt, &d});
-  }
-  finish(false);
+  s.steps = steps_;
+  s.totalOutflow = totalOutflow_;
+  s.wallSeconds = wall();
+  s.simulatedSeconds = solver_->time() - scene_.startTime;
+  s.finalVolume = totalVolume(solver_->diagnostics());
+  s.cellUpdatesPerSecond = s.wallSeconds > 0 ? static_cast<double>(domainCells_) * s.steps / s.wallSeconds : 0;
+  s.volumeBalanceError =
+      s.initialVolume > 0 ? (s.finalVolume + s.totalOutflow - s.initialVolume) / s.initialVolume : 0.0;
+  s.checkpoints = checkpoints_;
+  writeFinal(s, ending);
   return s;
 }
 
-void Simulation::writeFinal(const RunSummary& s, bool failed) {
+void Simulation::writeFinal(const RunSummary& s, Ending ending) {
+  const bool failed = ending == Ending::Failed;
   // On failure the maxima and arrival so far are still written; the final state may hold NaN.
   const double never = -1.0;
   if (!failed) out_->writeMap("hffinal", solver_->h());
@@ -207,16 +234,18 @@ void Simulation::writeFinal(const RunSummary& s, bool failed) {
       out_->writeMap("deposit", deposit);
     }
   }
-  out_->writeText("summary.json", summaryJson(s, failed));
+  out_->writeText("summary.json", summaryJson(s, ending));
 }
 
-std::string Simulation::summaryJson(const RunSummary& s, bool failed) const {
+std::string Simulation::summaryJson(const RunSummary& s, Ending ending) const {
+  const bool failed = ending == Ending::Failed;
+  const char* status = failed ? "failed" : ending == Ending::Stopped ? "stopped" : "completed";
   std::ostringstream o;
   o.precision(12);
   const compute::DeviceInfo& d = ctx_->device();
   const Grid& g = scene_.dem.grid;
   o << "{\n  \"talus_version\": \"0.1.0\",\n  \"run_file\": \"" << jsonEscape(scene_.runFile) << "\",\n"
-    << "  \"status\": \"" << (failed ? "failed" : "completed") << "\",\n";
+    << "  \"status\": \"" << status << "\",\n";
   if (failed) o << "  \"failure\": \"" << jsonEscape(failure_) << "\",\n";
   o << "  \"device\": \"" << jsonEscape(d.name) << "\",\n  \"platform\": \"" << jsonEscape(d.platformName) << "\",\n"
     << "  \"precision\": \"" << compute::precisionName(ctx_->precision()) << "\",\n"

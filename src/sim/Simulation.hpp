@@ -1,6 +1,7 @@
 // The time loop of a run: CFL step clipped to report times, per-step diagnostics and health check,
 // maps at report times, checkpoints, and the final maps, CSV and JSON summary (spec §7-§8).
 #pragma once
+#include <chrono>
 #include <functional>
 #include <memory>
 #include <string>
@@ -10,6 +11,7 @@
 #include "io/RunConfig.hpp"
 #include "sim/HealthCheck.hpp"
 #include "sim/OutputWriter.hpp"
+#include "sim/ParticleView.hpp"
 #include "sim/Scene.hpp"
 
 namespace talus::sim {
@@ -21,6 +23,10 @@ struct Progress {
   double wallSeconds = 0;
   double dt = 0;
   const flow::FlowDiagnostics* diagnostics = nullptr;
+  double volume = 0;             ///< both phases [m^3]
+  double cumulativeOutflow = 0;  ///< volume that has left the domain so far [m^3]
+  double balanceError = 0;       ///< (volume + cumulative outflow - initial volume) / initial volume
+  double kineticEnergy = 0;      ///< [J]
 };
 
 /// What a finished run reports (also written to summary.json).
@@ -49,7 +55,29 @@ class Simulation {
   Simulation(const Scene& scene, const io::RunConfig& config, const std::string& outDir, OutputMode mode);
   /// Runs to the end time. Throws SimulationError (after writing the maxima so far, the summary
   /// and keeping the last checkpoint) when the health check fails. `onProgress` runs every step.
+  /// Equivalent to begin(), stepOnce() until atEnd(), finish().
   RunSummary run(const std::function<void(const Progress&)>& onProgress = {});
+
+  // Step-wise driving, for callers that own the loop (the desktop application pauses, single-steps
+  // and stops between steps). The outputs are the same as run()'s: begin() writes the first report,
+  // each stepOnce() the diagnostics row, reports and checkpoints that fall due, finish() the final
+  // maps and summary.json.
+  /// Starts the clock and writes the report at the start time (not when resuming). Call once.
+  void begin();
+  /// True when the simulated time has reached the end time.
+  bool atEnd() const;
+  /// Advances by one CFL step (clipped to the next report and the end time) and returns where the
+  /// run stands. Throws SimulationError, after writing the outputs so far, when the health check fails.
+  Progress stepOnce();
+  /// Writes the final maps and summary.json and returns the summary. Before atEnd() this stops the
+  /// run early: the outputs describe the state reached and summary.json says "status": "stopped".
+  RunSummary finish();
+  /// The particles of this run for viewers, or nullptr when the run has none (the particle model
+  /// provides one once it is part of the loop).
+  const ParticleView* particleView() const { return particleView_; }
+  const Scene& scene() const { return scene_; }
+  /// Steps taken so far (including those before a resume).
+  long long steps() const { return steps_; }
   compute::Context& context() { return *ctx_; }
   flow::FlowSolver& solver() { return *solver_; }
   /// Simulated time the run starts (or resumes) from [s].
@@ -58,8 +86,12 @@ class Simulation {
  private:
   void writeReport();
   void writeCheckpoint(double wallSeconds);
-  void writeFinal(const RunSummary& summary, bool failed);
-  std::string summaryJson(const RunSummary& s, bool failed) const;
+  /// How a run ended, as summary.json reports it.
+  enum class Ending { Completed, Stopped, Failed };
+  double wall() const;
+  RunSummary finalize(Ending ending);
+  void writeFinal(const RunSummary& summary, Ending ending);
+  std::string summaryJson(const RunSummary& s, Ending ending) const;
 
   const Scene& scene_;
   const io::RunConfig& config_;
@@ -75,6 +107,11 @@ class Simulation {
   double initialVolume_ = 0, totalOutflow_ = 0, wallBefore_ = 0;
   std::string seriesIndex_ = "index,time_s,h_file,v_file\n";
   int checkpoints_ = 0;
+  const ParticleView* particleView_ = nullptr;
+  // State of the step-wise loop (begin() .. finish()).
+  bool begun_ = false, finished_ = false;
+  std::chrono::steady_clock::time_point start_;
+  double nextReport_ = 0, nextCheckpoint_ = 0, lastCheckpointWall_ = 0;
 };
 
 }  // namespace talus::sim

@@ -1,0 +1,352 @@
+#include "app/MainWindow.hpp"
+
+#include <QApplication>
+#include <QCloseEvent>
+#include <QDockWidget>
+#include <QDragEnterEvent>
+#include <QFileDialog>
+#include <QFileInfo>
+#include <QMenuBar>
+#include <QMessageBox>
+#include <QMimeData>
+#include <QStatusBar>
+#include <QToolBar>
+#include <cmath>
+
+#include "app/RecentFiles.hpp"
+#include "core/Error.hpp"
+#include "io/RasterIO.hpp"
+#include "sim/RunKeys.hpp"
+
+namespace talus::gui {
+
+MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
+  setWindowTitle("Talus");
+  setAcceptDrops(true);
+  viewer_ = new ViewerWidget;
+  setCentralWidget(viewer_);
+  form_ = new ParameterForm(talusRunKeys());
+  layers_ = new LayerPanel;
+  log_ = new LogPanel;
+  plots_ = new PlotPanel;
+  status_ = new RunStatusPanel;
+  hover_ = new QLabel;
+  run_ = new RunController(this);
+  statusBar()->addWidget(hover_, 1);
+  statusBar()->addPermanentWidget(status_);
+  buildActions();
+  buildDocks();
+
+  connect(form_, &ParameterForm::edited, this, [this] { updateActions(); });
+  connect(layers_, &LayerPanel::changed, this, [this] { applyLayerStyle(); });
+  connect(viewer_, &ViewerWidget::hovered, this, &MainWindow::onHover);
+  connect(viewer_, &ViewerWidget::interopChosen, log_, &LogPanel::append);
+  connect(run_, &RunController::log, log_, &LogPanel::append);
+  connect(run_, &RunController::stateChanged, this, [this](RunController::State s) {
+    status_->showState(s);
+    updateActions();
+  });
+  connect(run_, &RunController::prepared, this, &MainWindow::onPrepared);
+  connect(run_, &RunController::prepareFailed, this, [this](const QString& message) {
+    // Scene problems (rasters, grids) name their key: show them at the field.
+    ValidationResult r;
+    assignErrors(message.toStdString(), talusRunKeys(), r);
+    form_->showErrors(r);
+  });
+  connect(run_, &RunController::progress, this, [this](const RunProgress& p) {
+    status_->showProgress(p);
+    plots_->addProgress(p, run_->scene() && run_->scene()->settings.twoPhase);
+  });
+  connect(run_, &RunController::snapshotReady, this, &MainWindow::onSnapshot);
+  applyLayerStyle();
+  updateActions();
+  resize(1400, 900);
+}
+
+MainWindow::~MainWindow() = default;
+
+void MainWindow::buildActions() {
+  QMenu* file = menuBar()->addMenu("&File");
+  open_ = file->addAction("&Open run-file...", this, &MainWindow::chooseAndOpen, QKeySequence::Open);
+  recent_ = new RecentFiles(file->addMenu("Open &recent"), this);
+  connect(recent_, &RecentFiles::chosen, this, [this](const QString& f) {
+    if (confirmDiscard()) openRunFile(f);
+  });
+  save_ = file->addAction("&Save", this, [this] {
+    const QString problem = saveRunFile();
+    if (!problem.isEmpty()) log_->append("error: " + problem);
+  }, QKeySequence::Save);
+  saveAs_ = file->addAction("Save &as...", this, &MainWindow::saveAs, QKeySequence::SaveAs);
+  file->addSeparator();
+  shot_ = file->addAction("Export &screenshot (PNG)...", this, &MainWindow::screenshot);
+  record_ = file->addAction("Record &frame sequence...");
+  record_->setCheckable(true);
+  connect(record_, &QAction::toggled, this, &MainWindow::toggleRecording);
+  file->addSeparator();
+  file->addAction("&Quit", this, &QWidget::close, QKeySequence::Quit);
+
+  QMenu* runMenu = menuBar()->addMenu("&Run");
+  start_ = runMenu->addAction("&Start", this, [this] { startRun(); }, QKeySequence("F5"));
+  pause_ = runMenu->addAction("&Pause", this, [this] {
+    if (run_->state() == RunController::State::Paused) run_->resume();
+    else run_->pause();
+  }, QKeySequence("F6"));
+  step_ = runMenu->addAction("Single s&tep", this, [this] { run_->step(); }, QKeySequence("F7"));
+  stop_ = runMenu->addAction("St&op", this, [this] { run_->stop(); }, QKeySequence("F8"));
+  restart_ = runMenu->addAction("&Restart", this, [this] {
+    plots_->clear();
+    run_->restart();
+  });
+
+  QMenu* view = menuBar()->addMenu("&View");
+  tilted_ = view->addAction("&Tilted 3D view");
+  tilted_->setCheckable(true);
+  connect(tilted_, &QAction::toggled, this, [this](bool on) {
+    viewer_->setMode(on ? ViewCamera::Mode::Tilted : ViewCamera::Mode::Map);
+  });
+  view->addAction("&Reset view", this, [this] { viewer_->resetView(); });
+
+  QToolBar* bar = addToolBar("Run");
+  bar->setObjectName("runToolbar");
+  for (QAction* a : {open_, save_, start_, pause_, step_, stop_, restart_}) bar->addAction(a);
+  bar->addSeparator();
+  for (QAction* a : {tilted_, shot_, record_}) bar->addAction(a);
+}
+
+void MainWindow::buildDocks() {
+  auto dock = [this](const QString& title, QWidget* w, Qt::DockWidgetArea area) {
+    auto* d = new QDockWidget(title, this);
+    d->setObjectName(title);
+    d->setWidget(w);
+    addDockWidget(area, d);
+    return d;
+  };
+  dock("Parameters", form_, Qt::LeftDockWidgetArea);
+  dock("Layers", layers_, Qt::RightDockWidgetArea);
+  QDockWidget* logDock = dock("Log", log_, Qt::BottomDockWidgetArea);
+  QDockWidget* plotDock = dock("Plots", plots_, Qt::BottomDockWidgetArea);
+  splitDockWidget(logDock, plotDock, Qt::Horizontal);
+  resizeDocks({logDock, plotDock}, {500, 700}, Qt::Horizontal);
+  resizeDocks({logDock}, {240}, Qt::Vertical);
+}
+
+void MainWindow::updateActions() {
+  using S = RunController::State;
+  const S s = run_->state();
+  const bool active = s == S::Running || s == S::Paused || s == S::Preparing;
+  start_->setEnabled(doc_ && !active);
+  pause_->setEnabled(s == S::Running || s == S::Paused);
+  pause_->setText(s == S::Paused ? "Resume" : "Pause");
+  step_->setEnabled(s == S::Running || s == S::Paused);
+  stop_->setEnabled(active);
+  restart_->setEnabled(s == S::Running || s == S::Paused || s == S::Ended);
+  save_->setEnabled(doc_ != nullptr);
+  saveAs_->setEnabled(doc_ != nullptr);
+  form_->setEnabled(doc_ && !active);
+  open_->setEnabled(!active);
+  QString title = "Talus";
+  if (doc_) title = QFileInfo(QString::fromStdString(doc_->path())).fileName() + (doc_->isModified() ? " *" : "") + " - Talus";
+  setWindowTitle(title);
+}
+
+bool MainWindow::openRunFile(const QString& path) {
+  try {
+    doc_ = std::make_unique<RunFileDocument>(RunFileDocument::load(path.toStdString(), talusRunKeys()));
+  } catch (const std::exception& e) {
+    log_->append(QString("error: %1").arg(e.what()));
+    return false;
+  }
+  form_->setDocument(doc_.get());
+  recent_->add(path);
+  log_->append("opened " + QFileInfo(path).absoluteFilePath());
+  const ValidationResult r = validateDocument(*doc_);
+  form_->showErrors(r);
+  if (r.ok()) showTerrainOf(*r.config);
+  else log_->append("warning: the run-file has problems; they are shown next to their fields");
+  updateActions();
+  return true;
+}
+
+void MainWindow::showTerrainOf(const io::RunConfig& config) {
+  const io::MapValue dem = config.map("DEM");
+  if (!dem.isFile) return;
+  try {
+    const Raster r = io::readRaster(dem.file);
+    std::vector<float> z(r.values.size());
+    for (std::size_t k = 0; k < z.size(); ++k)
+      z[k] = r.valid[k] ? static_cast<float>(r.values[k] * dem.multiplier) : NAN;
+    viewer_->setTerrain(r.grid, std::move(z));
+  } catch (const std::exception& e) {
+    log_->append(QString("warning: cannot show the terrain: %1").arg(e.what()));
+  }
+}
+
+bool MainWindow::startRun() {
+  if (!doc_) return false;
+  const ValidationResult r = validateDocument(*doc_);
+  form_->showErrors(r);
+  if (!r.ok()) {
+    log_->append("error: the run-file is not valid; nothing was started:\n" +
+                 QString::fromStdString([&] {
+                   std::string all;
+                   for (const auto& [k, v] : r.fieldErrors) all += v + "\n";
+                   for (const auto& g : r.generalErrors) all += g + "\n";
+                   return all;
+                 }()).trimmed());
+    return false;
+  }
+  io::RunConfig config = *r.config;
+  if (!outputOverride_.isEmpty()) {
+    try {
+      config.set("Output Directory=" + QFileInfo(outputOverride_).absoluteFilePath().toStdString());
+    } catch (const std::exception& e) {
+      log_->append(QString("error: %1").arg(e.what()));
+      return false;
+    }
+  }
+  const QString out = QString::fromStdString(config.directory("Output Directory"));
+  const bool hasRun = QFileInfo::exists(out + "/summary.json") || QFileInfo::exists(out + "/diagnostics.csv");
+  if (hasRun && askBeforeOverwrite_ &&
+      QMessageBox::question(this, "Replace results?", "The output folder\n" + out +
+                                                          "\nholds the results of an earlier run. Replace them?") !=
+          QMessageBox::Yes)
+    return false;
+  plots_->clear();
+  run_->start(config, hasRun);
+  return true;
+}
+
+void MainWindow::onPrepared() {
+  const sim::ViewFields* view = run_->viewFields();
+  viewer_->setTerrain(view->grid(), view->elevation());
+  sim::Simulation* sim = run_->simulation();
+  viewer_->setDataSource(&sim->context().device(), sim->context().context(), sim->context().queue());
+  layers_->setCatalogue(view->gridLayers(), view->particleAttributes());
+  applyLayerStyle();
+}
+
+void MainWindow::onSnapshot(std::shared_ptr<const sim::ViewSnapshot> s) {
+  layers_->fitRanges(*s);
+  viewer_->setSnapshot(s);
+  plots_->addSnapshot(*s);
+  if (hoverI_ >= 0) hover_->setText(hoverText(hoverI_, hoverJ_));
+  if (exporter_.isRecording()) {
+    const QString problem = exporter_.captureFrame(*viewer_);
+    if (!problem.isEmpty()) {
+      log_->append("error: frame sequence stopped: " + problem);
+      record_->setChecked(false);
+    }
+  }
+}
+
+void MainWindow::applyLayerStyle() {
+  viewer_->setLayerRamp(layers_->layerRamp());
+  viewer_->setLayer(layers_->layer(), layers_->layerStyle());
+  viewer_->setParticleRamp(layers_->particleRamp());
+  viewer_->setParticleStyle(layers_->particleStyle());
+}
+
+void MainWindow::onHover(int i, int j, bool inside) {
+  hoverI_ = inside ? i : -1;
+  hoverJ_ = j;
+  hover_->setText(inside ? hoverText(i, j) : QString());
+}
+
+QString MainWindow::hoverText(int i, int j) const {
+  const auto s = viewer_->snapshot();
+  QString text = QString("cell (%1, %2)").arg(i).arg(j);
+  const sim::ViewFields* view = run_->viewFields();
+  if (!view) return text;
+  const Grid& g = view->grid();
+  if (i < 0 || j < 0 || i >= g.nx || j >= g.ny) return text;
+  const std::size_t k = g.index(i, j);
+  text += QString("  x %1 y %2").arg(g.cellX(i), 0, 'f', 1).arg(g.cellY(j), 0, 'f', 1);
+  text += QString("  elevation %1 m").arg(view->elevation()[k], 0, 'f', 2);
+  if (!s) return text;
+  for (const auto& info : view->gridLayers())
+    if (const std::vector<float>* v = s->layer(info.name); v && k < v->size() && std::isfinite((*v)[k]))
+      text += QString("  %1 %2 %3").arg(QString::fromStdString(info.name)).arg((*v)[k], 0, 'g', 4).arg(QString::fromStdString(info.unit));
+  return text;
+}
+
+QString MainWindow::saveRunFile(const QString& path) {
+  if (!doc_) return "no run-file is open";
+  const QString target = path.isEmpty() ? QString::fromStdString(doc_->path()) : path;
+  if (target.isEmpty()) return "the run-file has no name yet: use Save as";
+  try {
+    doc_->save(target.toStdString());
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  recent_->add(target);
+  log_->append("saved " + target);
+  updateActions();
+  return {};
+}
+
+void MainWindow::chooseAndOpen() {
+  if (!confirmDiscard()) return;
+  const QString path = QFileDialog::getOpenFileName(this, "Open run-file", {}, "Run-files (*.run);;All files (*)");
+  if (!path.isEmpty()) openRunFile(path);
+}
+
+void MainWindow::saveAs() {
+  const QString path = QFileDialog::getSaveFileName(this, "Save run-file as", QString::fromStdString(doc_->path()),
+                                                    "Run-files (*.run)");
+  if (path.isEmpty()) return;
+  const QString problem = saveRunFile(path);
+  if (!problem.isEmpty()) QMessageBox::warning(this, "Save failed", problem);
+}
+
+void MainWindow::screenshot() {
+  const QString path = QFileDialog::getSaveFileName(this, "Export screenshot", "talus.png", "PNG images (*.png)");
+  if (path.isEmpty()) return;
+  const QString problem = FrameExporter::saveScreenshot(*viewer_, path);
+  log_->append(problem.isEmpty() ? "screenshot saved to " + path : "error: " + problem);
+}
+
+void MainWindow::toggleRecording(bool on) {
+  if (!on) {
+    if (exporter_.isRecording())
+      log_->append(QString("frame sequence: %1 frames in %2").arg(exporter_.framesWritten()).arg(exporter_.folder()));
+    exporter_.stopSequence();
+    return;
+  }
+  const QString folder = QFileDialog::getExistingDirectory(this, "Folder for the frames");
+  const QString problem = folder.isEmpty() ? "no folder chosen" : exporter_.startSequence(folder);
+  if (!problem.isEmpty()) {
+    log_->append("frame sequence not started: " + problem);
+    const QSignalBlocker block(record_);
+    record_->setChecked(false);
+    return;
+  }
+  log_->append("recording frames into " + folder + " (one per viewer update)");
+}
+
+bool MainWindow::confirmDiscard() {
+  if (!doc_ || !doc_->isModified()) return true;
+  return QMessageBox::question(this, "Discard changes?", "The run-file has unsaved changes. Discard them?") ==
+         QMessageBox::Yes;
+}
+
+void MainWindow::dragEnterEvent(QDragEnterEvent* e) {
+  if (e->mimeData()->hasUrls()) e->acceptProposedAction();
+}
+
+void MainWindow::dropEvent(QDropEvent* e) {
+  const auto urls = e->mimeData()->urls();
+  if (urls.isEmpty() || !urls.front().isLocalFile()) return;
+  if (run_->state() == RunController::State::Running || run_->state() == RunController::State::Paused) return;
+  if (confirmDiscard()) openRunFile(urls.front().toLocalFile());
+}
+
+void MainWindow::closeEvent(QCloseEvent* e) {
+  if (!confirmDiscard()) {
+    e->ignore();
+    return;
+  }
+  run_->stop();
+  e->accept();
+}
+
+}  // namespace talus::gui

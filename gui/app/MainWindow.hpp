@@ -1,0 +1,90 @@
+// The main window: the parameter form (left), the live viewer with its layer panel (centre, right),
+// the log and the plots (bottom), run controls in a toolbar and the progress in the status bar. It
+// wires the parts together; each part lives in its own file.
+#pragma once
+#include <QAction>
+#include <QLabel>
+#include <QMainWindow>
+#include <memory>
+
+#include "export/FrameExporter.hpp"
+#include "form/ParameterForm.hpp"
+#include "form/RunFileDocument.hpp"
+#include "plots/PlotPanel.hpp"
+#include "run/LogPanel.hpp"
+#include "run/RunController.hpp"
+#include "run/RunStatusPanel.hpp"
+#include "view/LayerPanel.hpp"
+#include "view/ViewerWidget.hpp"
+
+namespace talus::gui {
+
+class RecentFiles;
+
+class MainWindow : public QMainWindow {
+  Q_OBJECT
+
+ public:
+  explicit MainWindow(QWidget* parent = nullptr);
+  ~MainWindow() override;
+
+  /// Opens a run-file into the form (and shows its terrain). Returns false (and logs why) when it
+  /// cannot be read.
+  bool openRunFile(const QString& path);
+  /// Validates the form and starts a run; false (errors shown next to their fields) when invalid.
+  bool startRun();
+  /// Saves the run-file (to `path`, or its own path when empty). Returns "" or the problem.
+  QString saveRunFile(const QString& path = {});
+  /// Whether to ask before a run replaces the outputs of an earlier run (off: replace silently).
+  void setAskBeforeOverwrite(bool ask) { askBeforeOverwrite_ = ask; }
+  /// Runs write into `dir` instead of the run-file's Output Directory (as `talus run --out`).
+  void setOutputOverride(const QString& dir) { outputOverride_ = dir; }
+
+  ParameterForm& form() { return *form_; }
+  ViewerWidget& viewer() { return *viewer_; }
+  LayerPanel& layers() { return *layers_; }
+  RunController& controller() { return *run_; }
+  PlotPanel& plots() { return *plots_; }
+  RunFileDocument* document() { return doc_.get(); }
+  FrameExporter& exporter() { return exporter_; }
+  QString logText() const { return log_->toPlainText(); }
+
+ protected:
+  void dragEnterEvent(QDragEnterEvent* e) override;
+  void dropEvent(QDropEvent* e) override;
+  void closeEvent(QCloseEvent* e) override;
+
+ private:
+  void buildActions();
+  void buildDocks();
+  void updateActions();
+  void applyLayerStyle();
+  void showTerrainOf(const io::RunConfig& config);
+  void onPrepared();
+  void onSnapshot(std::shared_ptr<const sim::ViewSnapshot> s);
+  void onHover(int i, int j, bool inside);
+  void chooseAndOpen();
+  void saveAs();
+  void screenshot();
+  void toggleRecording(bool on);
+  bool confirmDiscard();
+  QString hoverText(int i, int j) const;
+
+  std::unique_ptr<RunFileDocument> doc_;
+  ParameterForm* form_;
+  ViewerWidget* viewer_;
+  LayerPanel* layers_;
+  LogPanel* log_;
+  PlotPanel* plots_;
+  RunStatusPanel* status_;
+  QLabel* hover_;
+  RunController* run_;
+  RecentFiles* recent_ = nullptr;
+  FrameExporter exporter_;
+  bool askBeforeOverwrite_ = true;
+  QString outputOverride_;
+  int hoverI_ = -1, hoverJ_ = -1;
+  QAction *open_, *save_, *saveAs_, *start_, *pause_, *step_, *stop_, *restart_, *tilted_, *shot_, *record_;
+};
+
+}  // namespace talus::gui

@@ -1,0 +1,65 @@
+// talus-gui: the desktop application.
+//   talus-gui [RUNFILE] [--run] [--out DIR] [--overwrite] [--capture-at SECONDS:PATH] [--tilted] [--layer NAME]
+// --run starts the run-file at once; --out writes the results into DIR instead of the run-file's
+// Output Directory; --overwrite replaces earlier results without asking;
+// --capture-at saves a picture of the whole window once the simulated time reaches SECONDS (or the
+// run ends) and quits (used for the README screenshot under Xvfb).
+#include <QApplication>
+#include <QCommandLineParser>
+#include <QSurfaceFormat>
+#include <QTimer>
+
+#include "render/GlSetup.hpp"
+#include "app/MainWindow.hpp"
+#include "sim/Simulation.hpp"
+
+using talus::gui::MainWindow;
+
+int main(int argc, char** argv) {
+  // OpenGL 3.3 core for every GL widget; must be set before the application object exists.
+  talus::gui::requestCoreProfile33();
+  QApplication app(argc, argv);
+  QApplication::setOrganizationName("Talus");
+  QApplication::setApplicationName("talus-gui");
+
+  QCommandLineParser cli;
+  cli.setApplicationDescription("Talus desktop application: edit run-files, run them and watch the flow.");
+  cli.addHelpOption();
+  cli.addPositionalArgument("runfile", "run-file to open");
+  const QCommandLineOption runOpt("run", "start the run at once");
+  const QCommandLineOption outOpt("out", "write results into DIR (overrides the Output Directory)", "DIR");
+  const QCommandLineOption overwriteOpt("overwrite", "replace earlier results without asking");
+  const QCommandLineOption captureOpt("capture-at", "save a window picture at simulated time SECONDS to PATH and quit",
+                                      "SECONDS:PATH");
+  const QCommandLineOption tiltedOpt("tilted", "start in the tilted 3D view");
+  const QCommandLineOption layerOpt("layer", "grid layer to show (h, velocity, hmax, arrival, ...)", "NAME");
+  cli.addOptions({runOpt, outOpt, overwriteOpt, captureOpt, tiltedOpt, layerOpt});
+  cli.process(app);
+
+  MainWindow window;
+  window.setAskBeforeOverwrite(!cli.isSet(overwriteOpt));
+  if (cli.isSet(outOpt)) window.setOutputOverride(cli.value(outOpt));
+  window.show();
+  const QStringList files = cli.positionalArguments();
+  if (!files.isEmpty() && !window.openRunFile(files.front())) return 2;
+  if (cli.isSet(tiltedOpt)) window.viewer().setMode(talus::gui::ViewCamera::Mode::Tilted);
+  if (cli.isSet(layerOpt)) window.layers().selectLayer(cli.value(layerOpt));
+  if (cli.isSet(runOpt) && !window.startRun()) return 2;
+
+  if (cli.isSet(captureOpt)) {
+    const QString spec = cli.value(captureOpt);
+    const double at = spec.section(':', 0, 0).toDouble();
+    const QString path = spec.section(':', 1);
+    auto capture = [&window, path] {
+      window.grab().save(path, "PNG");
+      QApplication::quit();
+    };
+    QObject::connect(&window.controller(), &talus::gui::RunController::snapshotReady, &window,
+                     [&window, at, capture](std::shared_ptr<const talus::sim::ViewSnapshot> s) {
+                       // Let the viewer draw the snapshot before the picture is taken.
+                       if (s->time >= at) QTimer::singleShot(300, &window, capture);
+                     });
+    QObject::connect(&window.controller(), &talus::gui::RunController::prepareFailed, &app, [] { QApplication::exit(2); });
+  }
+  return app.exec();
+}

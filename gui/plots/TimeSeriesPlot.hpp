@@ -1,0 +1,39 @@
+// A small live line plot of one or more time series against simulated time, with axes, a unit and
+// a legend, painted with QPainter. Long series are thinned to keep drawing cheap.
+#pragma once
+#include <QColor>
+#include <QPointF>
+#include <QString>
+#include <QWidget>
+#include <vector>
+
+namespace talus::gui {
+
+class TimeSeriesPlot : public QWidget {
+  Q_OBJECT
+
+ public:
+  TimeSeriesPlot(const QString& title, const QString& unit, QWidget* parent = nullptr);
+  /// Adds a series; returns its index for append().
+  int addSeries(const QString& name, const QColor& color);
+  /// Appends a point (t [s], value) to a series.
+  void append(int series, double t, double value);
+  void clear();
+  /// Number of points held by a series.
+  std::size_t size(int series) const { return series_[static_cast<std::size_t>(series)].points.size(); }
+  QSize sizeHint() const override { return {320, 180}; }
+
+ protected:
+  void paintEvent(QPaintEvent*) override;
+
+ private:
+  struct Series {
+    QString name;
+    QColor color;
+    std::vector<QPointF> points;
+  };
+  QString title_, unit_;
+  std::vector<Series> series_;
+};
+
+}  // namespace talus::gui

@@ -1,0 +1,214 @@
+#include "view/ViewerWidget.hpp"
+
+#include <QMouseEvent>
+#include <QWheelEvent>
+#include <cmath>
+
+#include "render/ParticleRenderer.hpp"
+
+namespace talus::gui {
+
+ViewerWidget::ViewerWidget(QWidget* parent) : QOpenGLWidget(parent) {
+  setMouseTracking(true);
+  setMinimumSize(320, 240);
+}
+
+ViewerWidget::~ViewerWidget() {
+  // GL objects are released with the context current.
+  makeCurrent();
+  particles_.reset();
+  terrain_.reset();
+  interop_.reset();
+  doneCurrent();
+}
+
+void ViewerWidget::setTerrain(const Grid& grid, std::vector<float> elevation) {
+  grid_ = grid;
+  elevation_ = std::move(elevation);
+  snapshot_.reset();
+  terrainDirty_ = true;
+  resetView();
+}
+
+void ViewerWidget::setDataSource(const compute::DeviceInfo* device, cl_context context, cl_command_queue queue) {
+  device_ = device;
+  clContext_ = context;
+  clQueue_ = queue;
+  if (glReady_) {
+    makeCurrent();
+    chooseInterop();
+    doneCurrent();
+  }
+}
+
+void ViewerWidget::setSnapshot(std::shared_ptr<const sim::ViewSnapshot> snapshot) {
+  snapshot_ = std::move(snapshot);
+  layerDirty_ = particlesDirty_ = true;
+  update();
+}
+
+void ViewerWidget::setLayer(const QString& name, const LayerStyle& style) {
+  if (name != layer_) layerDirty_ = true;
+  layer_ = name;
+  layerStyle_ = style;
+  layerStyle_.visible = style.visible && !name.isEmpty();
+  update();
+}
+
+void ViewerWidget::setLayerRamp(const QString& ramp) {
+  layerRamp_ = ramp;
+  rampDirty_ = true;
+  update();
+}
+
+void ViewerWidget::setParticleStyle(const ParticleStyle& style) {
+  if (style.attribute != particleStyle_.attribute) particlesDirty_ = true;
+  particleStyle_ = style;
+  update();
+}
+
+void ViewerWidget::setParticleRamp(const QString& ramp) {
+  particleRamp_ = ramp;
+  rampDirty_ = true;
+  update();
+}
+
+void ViewerWidget::setMode(ViewCamera::Mode mode) {
+  camera_.setMode(mode);
+  update();
+}
+
+void ViewerWidget::resetView() {
+  camera_.fit(grid_.nx * grid_.dx, grid_.ny * grid_.dx, width(), height());
+  update();
+}
+
+const InteropChoice* ViewerWidget::interopChoice() const { return interop_ ? &interop_->choice() : nullptr; }
+
+void ViewerWidget::initializeGL() {
+  initializeOpenGLFunctions();
+  terrain_ = std::make_unique<TerrainRenderer>(gl());
+  particles_ = std::make_unique<ParticleRenderer>(gl());
+  glReady_ = true;
+  chooseInterop();
+}
+
+void ViewerWidget::chooseInterop() {
+  interop_ = std::make_unique<ClGlInterop>(gl(), chooseInteropPath(device_, clContext_, clQueue_));
+  if (device_)
+    emit interopChosen(QString("viewer: device data reach OpenGL by %1 (%2)")
+                         .arg(interopPathName(interop_->choice().path), interop_->choice().reason));
+}
+
+void ViewerWidget::resizeGL(int w, int h) {
+  if (frames_ == 0) camera_.fit(grid_.nx * grid_.dx, grid_.ny * grid_.dx, w, h);
+}
+
+QVector3D ViewerWidget::worldOrigin() const {
+  const auto& gt = grid_.geoTransform;
+  return QVector3D(float(gt[0] + gt[1] * grid_.nx / 2.0), float(gt[3] + gt[5] * grid_.ny / 2.0),
+                   terrain_ ? terrain_->elevationMid() : 0.0f);
+}
+
+float ViewerWidget::exaggeration() const { return camera_.mode() == ViewCamera::Mode::Tilted ? 1.0f : 0.0f; }
+
+void ViewerWidget::uploadPending() {
+  if (terrainDirty_ && grid_.nx > 0) {
+    terrain_->setTerrain(grid_, elevation_);
+    terrainDirty_ = false;
+    layerDirty_ = true;
+  }
+  if (rampDirty_) {
+    terrain_->setRamp(ColorRamp::byName(layerRamp_));
+    particles_->setRamp(ColorRamp::byName(particleRamp_));
+    rampDirty_ = false;
+  }
+  if (layerDirty_ && snapshot_ && terrain_->hasTerrain()) {
+    if (const std::vector<float>* v = snapshot_->layer(layer_.toStdString())) terrain_->setLayer(*v, *interop_);
+    layerDirty_ = false;
+  }
+  if (particlesDirty_ && snapshot_) {
+    const std::string name = particleStyle_.attribute.isEmpty() && !snapshot_->particleAttributeNames.empty()
+                                 ? snapshot_->particleAttributeNames.front()
+                                 : particleStyle_.attribute.toStdString();
+    const std::vector<float>* values = snapshot_->particleAttribute(name);
+    particles_->setParticles(snapshot_->particlePositions, values ? *values : std::vector<float>{}, *interop_);
+    particlesDirty_ = false;
+  }
+}
+
+void ViewerWidget::paintGL() {
+  uploadPending();
+  glClearColor(0.16f, 0.17f, 0.19f, 1.0f);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  const bool tilted = camera_.mode() == ViewCamera::Mode::Tilted;
+  if (tilted) glEnable(GL_DEPTH_TEST);
+  else glDisable(GL_DEPTH_TEST);
+  const QMatrix4x4 mvp = camera_.matrix(width(), height());
+  terrain_->draw(mvp, exaggeration(), layerStyle_);
+  if (particleStyle_.visible && snapshot_ && snapshot_->particleCount > 0) {
+    // In the map view (no depth test) particles are drawn over the terrain; tilted, hills hide them.
+    particles_->draw(mvp, worldOrigin(), exaggeration(), particleStyle_.pointSize, particleStyle_.min,
+                     particleStyle_.max);
+  }
+  ++frames_;
+}
+
+bool ViewerWidget::cellAt(QPoint pixel, int& i, int& j) {
+  if (grid_.nx == 0) return false;
+  QPointF model;
+  if (camera_.mode() == ViewCamera::Mode::Map) {
+    model = camera_.mapPoint(pixel, width(), height());
+  } else {
+    // Unproject the depth under the cursor.
+    makeCurrent();
+    const double ratio = devicePixelRatioF();
+    const int px = int(pixel.x() * ratio), py = int((height() - 1 - pixel.y()) * ratio);
+    float depth = 1.0f;
+    glBindFramebuffer(GL_FRAMEBUFFER, defaultFramebufferObject());
+    glReadPixels(px, py, 1, 1, GL_DEPTH_COMPONENT, GL_FLOAT, &depth);
+    doneCurrent();
+    if (depth >= 1.0f) return false;
+    const QVector4D ndc(2.0f * pixel.x() / width() - 1.0f, 1.0f - 2.0f * pixel.y() / height(), 2.0f * depth - 1.0f, 1);
+    const QVector4D p = camera_.matrix(width(), height()).inverted() * ndc;
+    model = QPointF(p.x() / p.w(), p.y() / p.w());
+  }
+  i = int(std::floor(model.x() / grid_.dx + grid_.nx / 2.0));
+  j = int(std::floor(grid_.ny / 2.0 - model.y() / grid_.dx));
+  return i >= 0 && j >= 0 && i < grid_.nx && j < grid_.ny;
+}
+
+QPointF ViewerWidget::pixelOfCell(int i, int j) const {
+  const QPointF model((i + 0.5 - grid_.nx / 2.0) * grid_.dx, (grid_.ny / 2.0 - j - 0.5) * grid_.dx);
+  return camera_.mapPixel(model, width(), height());
+}
+
+void ViewerWidget::mousePressEvent(QMouseEvent* e) { lastMouse_ = e->pos(); }
+
+void ViewerWidget::mouseMoveEvent(QMouseEvent* e) {
+  const QPoint d = e->pos() - lastMouse_;
+  lastMouse_ = e->pos();
+  const bool panning = (e->buttons() & Qt::LeftButton && camera_.mode() == ViewCamera::Mode::Map) ||
+                       e->buttons() & Qt::MiddleButton || e->buttons() & Qt::RightButton ||
+                       (e->buttons() & Qt::LeftButton && e->modifiers() & Qt::ShiftModifier);
+  if (panning) {
+    camera_.pan(d.x(), d.y(), width(), height());
+    update();
+  } else if (e->buttons() & Qt::LeftButton) {
+    camera_.orbit(d.x(), d.y());
+    update();
+  }
+  int i = 0, j = 0;
+  const bool inside = cellAt(e->pos(), i, j);
+  emit hovered(i, j, inside);
+}
+
+void ViewerWidget::wheelEvent(QWheelEvent* e) {
+  const double factor = std::pow(1.0015, e->angleDelta().y());
+  camera_.zoom(factor, e->position(), width(), height());
+  update();
+}
+
+void ViewerWidget::leaveEvent(QEvent*) { emit hovered(0, 0, false); }
+
+}  // namespace talus::gui

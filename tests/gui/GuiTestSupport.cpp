@@ -1,0 +1,76 @@
+#include "GuiTestSupport.hpp"
+
+#include <QCoreApplication>
+#include <QElapsedTimer>
+#include <QThread>
+#include <cmath>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+namespace talus::guitest {
+
+namespace fs = std::filesystem;
+
+fs::path scratchDir(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("talus_gui_test_" + name);
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+std::string writeExampleRunFile(const fs::path& dir, const std::string& extraLines) {
+  const std::string data = std::string(TALUS_TEST_DATA_DIR) + "/kot_dambreak";
+  std::ifstream in(data + "/kot_dambreak.run");
+  std::ostringstream text;
+  std::string line;
+  // Replaced keys are dropped from the original; the extra lines follow the [Output] section.
+  std::set<std::string> replaced;
+  std::istringstream extras(extraLines);
+  for (std::string e; std::getline(extras, e);)
+    if (e.find('=') != std::string::npos) replaced.insert(e.substr(0, e.find('=')));
+  while (std::getline(in, line)) {
+    const std::string key = line.substr(0, line.find('='));
+    if (key == "Map Directory") line = "Map Directory=" + data;
+    if (key == "Output Directory") line = "Output Directory=" + (dir / "out").string();
+    if (replaced.count(key)) continue;
+    text << line << "\n";
+  }
+  text << extraLines;
+  const std::string path = (dir / "scene.run").string();
+  std::ofstream(path) << text.str();
+  return path;
+}
+
+bool waitFor(const std::function<bool()>& done, double seconds) {
+  QElapsedTimer clock;
+  clock.start();
+  while (!done()) {
+    if (clock.elapsed() > seconds * 1000) return false;
+    QCoreApplication::processEvents(QEventLoop::AllEvents, 20);
+    QThread::msleep(5);
+  }
+  return true;
+}
+
+int distinctColours(const QImage& image) {
+  std::set<QRgb> colours;
+  for (int y = 0; y < image.height(); ++y)
+    for (int x = 0; x < image.width(); ++x) colours.insert(image.pixel(x, y) & 0xffffff);
+  return static_cast<int>(colours.size());
+}
+
+double greyDeviation(const QImage& image) {
+  double sum = 0, sum2 = 0;
+  const double n = double(image.width()) * image.height();
+  for (int y = 0; y < image.height(); ++y)
+    for (int x = 0; x < image.width(); ++x) {
+      const double g = qGray(image.pixel(x, y));
+      sum += g;
+      sum2 += g * g;
+    }
+  const double mean = sum / n;
+  return std::sqrt(std::max(0.0, sum2 / n - mean * mean));
+}
+
+}  // namespace talus::guitest

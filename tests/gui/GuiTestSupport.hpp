@@ -1,0 +1,24 @@
+// Helpers of the GUI tests: a scratch copy of the example run-file, waiting on the event loop, and
+// image statistics for the rendered-frame checks.
+#pragma once
+#include <QImage>
+#include <QString>
+#include <filesystem>
+#include <functional>
+#include <string>
+
+namespace talus::guitest {
+
+/// A fresh folder under the system temp folder (removed at the next call with the same name).
+std::filesystem::path scratchDir(const std::string& name);
+/// Writes the example scene's run-file into `dir`, maps read from data/kot_dambreak, outputs into
+/// dir/out, with extra "Key=Value" lines replacing those keys. Returns its path.
+std::string writeExampleRunFile(const std::filesystem::path& dir, const std::string& extraLines = "");
+/// Processes events until `done` is true or `seconds` pass; returns done().
+bool waitFor(const std::function<bool()>& done, double seconds);
+/// Number of distinct colours of an image.
+int distinctColours(const QImage& image);
+/// Standard deviation of the grey value (0..255) over the image.
+double greyDeviation(const QImage& image);
+
+}  // namespace talus::guitest
