@@ -1,7 +1,7 @@
 // Terrain forces and the symplectic update of the particles (spec §5): bed-slope gravity -g_n grad b
 // (horizontal projection, as the grid model), basal Coulomb friction tan(delta) (1 - B gamma) g_n
 // applied implicitly (it stops a particle but never reverses it; gamma = 0 for dry particles), then
-// v <- v + dt a, x <- x + dt v (symplectic Euler). A particle that leaves the raster or enters a
+// v <- v + dt a, x <- x + dt v (symplectic Euler), and the particle's area A <- A exp(dt div v). A particle that leaves the raster or enters a
 // nodata cell is removed: its mass goes to `out_mass` (tallied by the host as outflow), its
 // position becomes NaN (it sorts behind every live particle at the next neighbour build) and its
 // mass zero.
@@ -11,7 +11,8 @@ __kernel void particle_integrate(__constant const ParticleParams* p, __global co
                                  __global const real* grad_x, __global const real* grad_y, __global const real* gn,
                                  __global real* x, __global real* y, __global real* vx, __global real* vy,
                                  __global real* m, __global const real* delta, __global const real* ax,
-                                 __global const real* ay, __global real* out_mass, const real dt) {
+                                 __global const real* ay, __global real* A, __global const real* divergence,
+                                 __global real* out_mass, const real dt) {
   const int i = get_global_id(0);
   if (i >= p->count) return;
   out_mass[i] = 0;
@@ -38,6 +39,7 @@ __kernel void particle_integrate(__constant const ParticleParams* p, __global co
     vx[i] = vy[i] = 0;
     return;
   }
+  A[i] *= exp(dt * divergence[i]);  // continuity: dA/dt = A div v (exact for a constant rate)
   vx[i] = ux;
   vy[i] = uy;
   x[i] = xn;

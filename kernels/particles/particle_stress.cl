@@ -1,6 +1,6 @@
 // Stress of the particles over one sub-step (spec §5, OpenLISEM Hazard P.79-P.82, P.26, P.41-P.43):
-// 1. velocity gradient L_i = [sum_j V_j (v_j - v_i) (x) grad_i W_ij] M_i^-1, V_j = m_j / rhoA_j (the
-//    area a particle stands for), with the kernel-gradient correction M_i = sum_j V_j (x_j - x_i) (x)
+// 1. velocity gradient L_i = [sum_j A_j (v_j - v_i) (x) grad_i W_ij] M_i^-1, A_j the area a particle
+//    stands for (particle_density.cl), with the kernel-gradient correction M_i = sum_j V_j (x_j - x_i) (x)
 //    grad_i W_ij (Bonet & Lok 1999), which makes L exact for linear velocity fields also at free
 //    edges; where M is near singular (fewer than three neighbours in general position) no
 //    correction is applied;
@@ -9,7 +9,8 @@
 //    Bell-Rankine lateral stress sigma_lat = -max(0, K p_zz - 2 c sqrt(K)), p_zz = rho g_n H / 2,
 //    added to both normal components for the yield check (the total in-plane stress is
 //    sigma + sigma_lat I) and the vertical stress sigma_zz = -p_zz (P.41);
-// 3. the depth-integrated stress N = H (sigma + sigma_lat I) used by particle_forces.
+// 3. the depth-integrated stress N = H (sigma + sigma_lat I) and M_i^-1 (identity where M is near
+//    singular), used by particle_forces.
 // K: Savage-Hutter active (the particle's velocity field extends, tr L > 0) or passive, from phi and
 // delta, or constant.
 #include "particles/particle_material.cl"
@@ -24,12 +25,13 @@ inline real particle_earth_pressure(__constant const ParticleParams* p, real phi
 __kernel void particle_stress(__constant const ParticleParams* p, __constant const NeighbourGridParams* ng,
                               __global const uint* cell_start, __global const uint* cell_end,
                               __global const real* x, __global const real* y, __global const real* vx,
-                              __global const real* vy, __global const real* m, __global const real* rhoA,
+                              __global const real* vy, __global const real* A,
                               __global const real* H, __global const real* rho, __global const real* gn,
                               __global const real* phi, __global const real* delta, __global real* sxx,
                               __global real* syy, __global real* sxy, __global real* coh,
                               __global const real* coh0, __global real* plastic, __global real* Nxx,
-                              __global real* Nyy, __global real* Nxy, const real dt) {
+                              __global real* Nyy, __global real* Nxy, __global real* Minv, __global real* divergence,
+                              const real dt) {
   const int i = get_global_id(0);
   if (i >= p->count) return;
   const real h = p->h, r2max = (real)4 * h * h;
@@ -45,7 +47,7 @@ __kernel void particle_stress(__constant const ParticleParams* p, __constant con
         const real dx = xi - x[j], dy = yi - y[j], r2 = dx * dx + dy * dy;
         if (r2 >= r2max) continue;
         const real2 gw = sph_grad((real2)(dx, dy), h);
-        const real V = m[j] / rhoA[j];
+        const real V = A[j];
         const real du = vx[j] - vxi, dv = vy[j] - vyi;
         g00 += V * du * gw.x;
         g01 += V * du * gw.y;
@@ -60,8 +62,9 @@ __kernel void particle_stress(__constant const ParticleParams* p, __constant con
   // L = G M^-1 when M is well conditioned (det above 1e-3 of its value for a full support, ~1).
   real L00 = g00, L01 = g01, L10 = g10, L11 = g11;
   const real det = m00 * m11 - m01 * m10;
+  real i00 = 1, i01 = 0, i10 = 0, i11 = 1;
   if (fabs(det) > (real)1e-3) {
-    const real i00 = m11 / det, i01 = -m01 / det, i10 = -m10 / det, i11 = m00 / det;
+    i00 = m11 / det, i01 = -m01 / det, i10 = -m10 / det, i11 = m00 / det;
     L00 = g00 * i00 + g01 * i10;
     L01 = g00 * i01 + g01 * i11;
     L10 = g10 * i00 + g11 * i10;
@@ -80,4 +83,10 @@ __kernel void particle_stress(__constant const ParticleParams* p, __constant con
   Nxx[i] = Hi * (s.sxx + lat);
   Nyy[i] = Hi * (s.syy + lat);
   Nxy[i] = Hi * s.sxy;
+  // The correction matrix for the momentum equation (M is symmetric: one off-diagonal term).
+  const int cap = get_global_size(0);
+  Minv[i] = i00;
+  Minv[cap + i] = (real)0.5 * (i01 + i10);
+  Minv[2 * cap + i] = i11;
+  divergence[i] = L00 + L11;  // for the area update dA/dt = A div v (particle_integrate)
 }

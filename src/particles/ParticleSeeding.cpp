@@ -66,6 +66,7 @@ SeededParticles seedParticles(const Grid& grid, const SeedInput& in, const SeedS
   out.y.reserve(total);
   out.mass.reserve(total);
   out.volume.reserve(total);
+  out.area.reserve(total);
   out.cell.reserve(total);
   uint64_t index = 0;  // runs on across cells
   const double offset = 0.5;
@@ -83,6 +84,7 @@ SeededParticles seedParticles(const Grid& grid, const SeedInput& in, const SeedS
         out.y.push_back((j + w) * grid.dx);
         out.mass.push_back(m);
         out.volume.push_back(v);
+        out.area.push_back(area / static_cast<double>(count[k]));
         out.cell.push_back(static_cast<uint32_t>(k));
       }
     }

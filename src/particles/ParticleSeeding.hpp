@@ -32,6 +32,7 @@ struct SeededParticles {
   std::vector<double> x, y;
   std::vector<double> mass;    ///< [kg]
   std::vector<double> volume;  ///< [m^3], mass / rho_c of the cell
+  std::vector<double> area;    ///< horizontal area the particle stands for [m^2]: dx^2 / particles in its cell
   std::vector<uint32_t> cell;  ///< row-major index of the seeding cell
   double particleVolume = 0;   ///< V_I used [m^3]
   std::size_t size() const { return x.size(); }

@@ -126,6 +126,7 @@ void ParticleSolver::setParticles(const SeededParticles& seeded, const ParticleM
   capacity_ = std::max<std::size_t>(n, 1);
   count_ = n;
   auto make = [&](compute::RealBuffer& b, const char* label) { b = compute::RealBuffer(ctx_, capacity_, label); };
+  make(A_, "particle area"), make(V_, "particle volume"), make(div_, "particle divergence");
   make(x_, "particle x"), make(y_, "particle y"), make(vx_, "particle vx"), make(vy_, "particle vy");
   make(m_, "particle mass"), make(rho_, "particle density"), make(phi_, "particle phi"), make(delta_, "particle delta");
   make(coh_, "particle cohesion"), make(coh0_, "particle initial cohesion"), make(sxx_, "particle sxx");
@@ -134,12 +135,14 @@ void ParticleSolver::setParticles(const SeededParticles& seeded, const ParticleM
   make(Nyy_, "particle Nyy"), make(Nxy_, "particle Nxy"), make(ax_, "particle ax"), make(ay_, "particle ay");
   make(outMass_, "particle outflow");
   speed_ = compute::RealBuffer(ctx_, 3 * capacity_, "particle totals");
+  Minv_ = compute::RealBuffer(ctx_, 3 * capacity_, "particle gradient correction");
   if (n == 0) {
     writeParams();
     updateDiagnostics();
     return;
   }
   const std::vector<double> zero(n, 0.0);
+  A_.upload(seeded.area), V_.upload(seeded.volume);
   x_.upload(seeded.x), y_.upload(seeded.y), vx_.upload(zero), vy_.upload(zero), m_.upload(seeded.mass);
   rho_.upload(rho), phi_.upload(phi), delta_.upload(delta), coh_.upload(coh), coh0_.upload(coh);
   sxx_.upload(zero), syy_.upload(zero), sxy_.upload(zero), plastic_.upload(zero);
@@ -199,7 +202,7 @@ void ParticleSolver::step(double dt) {
 
 void ParticleSolver::reorderAll() {
   for (compute::RealBuffer* f : {&x_, &y_, &vx_, &vy_, &m_, &rho_, &phi_, &delta_, &coh_, &coh0_, &sxx_, &syy_, &sxy_,
-                                 &plastic_})
+                                 &plastic_, &A_, &V_})
     neighbours_->reorder(*f);
 }
 
@@ -214,15 +217,15 @@ void ParticleSolver::subStep(double ds) {
   }
   if (count_ == 0) return;
   const compute::Range global{count_};
-  density_.bind(params_, ng.params(), ng.cellStart(), ng.cellEnd(), x_, y_, m_, rho_, rhoA_, H_);
+  density_.bind(params_, ng.params(), ng.cellStart(), ng.cellEnd(), x_, y_, V_, A_, rho_, rhoA_, H_);
   density_.launch(global, {0, 0}, "particle_density");
-  stress_.bind(params_, ng.params(), ng.cellStart(), ng.cellEnd(), x_, y_, vx_, vy_, m_, rhoA_, H_, rho_, gn_, phi_,
-               delta_, sxx_, syy_, sxy_, coh_, coh0_, plastic_, Nxx_, Nyy_, Nxy_, compute::RealArg{ds});
+  stress_.bind(params_, ng.params(), ng.cellStart(), ng.cellEnd(), x_, y_, vx_, vy_, A_, H_, rho_, gn_, phi_, delta_, sxx_,
+               syy_, sxy_, coh_, coh0_, plastic_, Nxx_, Nyy_, Nxy_, Minv_, div_, compute::RealArg{ds});
   stress_.launch(global, {0, 0}, "particle_stress");
-  forces_.bind(params_, ng.params(), ng.cellStart(), ng.cellEnd(), x_, y_, vx_, vy_, m_, rhoA_, Nxx_, Nyy_, Nxy_, ax_,
-               ay_);
+  forces_.bind(params_, ng.params(), ng.cellStart(), ng.cellEnd(), x_, y_, vx_, vy_, m_, rhoA_, Nxx_, Nyy_, Nxy_, Minv_,
+               ax_, ay_);
   forces_.launch(global, {0, 0}, "particle_forces");
-  integrate_.bind(params_, mask_, gradX_, gradY_, gn_, x_, y_, vx_, vy_, m_, delta_, ax_, ay_, outMass_,
+  integrate_.bind(params_, mask_, gradX_, gradY_, gn_, x_, y_, vx_, vy_, m_, delta_, ax_, ay_, A_, div_, outMass_,
                   compute::RealArg{ds});
   integrate_.launch(global, {0, 0}, "particle_integrate");
   diag_.outflowMass += reducer_.sum(outMass_, count_);

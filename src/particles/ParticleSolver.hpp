@@ -91,9 +91,9 @@ class ParticleSolver {
   compute::Buffer<uint8_t> mask_;
   compute::RealBuffer gradX_, gradY_, gn_;
   // Particle fields (reordered together at every neighbour build).
-  compute::RealBuffer x_, y_, vx_, vy_, m_, rho_, phi_, delta_, coh_, coh0_, sxx_, syy_, sxy_, plastic_;
+  compute::RealBuffer x_, y_, vx_, vy_, m_, rho_, phi_, delta_, coh_, coh0_, sxx_, syy_, sxy_, plastic_, A_, V_;
   // Per sub-step scratch (not reordered).
-  compute::RealBuffer rhoA_, H_, Nxx_, Nyy_, Nxy_, ax_, ay_, outMass_, speed_;
+  compute::RealBuffer rhoA_, H_, Nxx_, Nyy_, Nxy_, Minv_, div_, ax_, ay_, outMass_, speed_;
   compute::Kernel density_, stress_, forces_, integrate_, speedKernel_;
 };
 
