@@ -1,7 +1,8 @@
 // Benchmark of the particle neighbour search (not a test): throughput of the bitonic sort of
 // (key, index) pairs in keys/s, for several work-group sizes, and the time of a full neighbour-grid
 // build (cell keys, sort, start/end tables) plus the reordering of the two position arrays, with the
-// kernels' shares from the profiler.
+// kernels' shares from the profiler; then the particle-grid transfers (P2G of the confined phase by
+// gather, G2P of the velocity) at 4 particles per terrain cell.
 //
 //   bench_particles [--sizes 100000,1000000] [--repeat N] [--local 64,256,1024] [--precision float|double]
 //                   [--per-cell P] [--device SEL]
@@ -20,7 +21,9 @@
 
 #include "compute/Context.hpp"
 #include "core/Error.hpp"
+#include "core/Grid.hpp"
 #include "particles/NeighbourGrid.hpp"
+#include "particles/ParticleGridTransfer.hpp"
 #include "particles/ParticleSort.hpp"
 
 using namespace talus;
@@ -100,6 +103,40 @@ void benchGrid(compute::Context& ctx, std::size_t n, double perCell, int repeat)
   std::printf("%s\n", ctx.profiler().report().c_str());
 }
 
+/// P2G (confined phase: thickness, mass, momentum) and G2P (PIC/FLIP velocity) of n particles,
+/// uniform over a square raster of 1 m cells with 4 particles per cell, h = dx (neighbour cell 2 dx).
+void benchTransfer(compute::Context& ctx, std::size_t n, int repeat) {
+  const int side = std::max(1, static_cast<int>(std::lround(std::sqrt(static_cast<double>(n) / 4.0))));
+  const Grid g = Grid::make(side, side, 1.0);
+  const double r = 2.0;  // support 2h, h = dx
+  particles::NeighbourGrid grid(ctx, particles::DomainBox{-r, -r, side + r, side + r}, r, n);
+  particles::ParticleGridTransfer transfer(ctx, g);
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> u(0.0, side), v(-1.0, 1.0);
+  std::vector<double> xs(n), ys(n), vs(n), ones(n, 0.25);
+  for (std::size_t i = 0; i < n; ++i) xs[i] = u(rng), ys[i] = u(rng), vs[i] = v(rng);
+  compute::RealBuffer x(ctx, n, "x"), y(ctx, n, "y"), vx(ctx, n, "vx"), vy(ctx, n, "vy"), vol(ctx, n, "volume");
+  x.upload(xs), y.upload(ys), vx.upload(vs), vy.upload(vs), vol.upload(ones);
+  grid.build(x, y, n);
+  for (compute::RealBuffer* f : {&x, &y, &vx, &vy, &vol}) grid.reorder(*f);
+  const std::size_t cells = g.cells();
+  compute::RealBuffer H(ctx, cells, "H"), M(ctx, cells, "M"), Px(ctx, cells, "Px"), Py(ctx, cells, "Py");
+  transfer.confinedToGrid(grid, x, y, vol, vol, vx, vy, H, M, Px, Py);  // warm-up
+  transfer.gridVelocityToParticles(Px, Py, H, M, 0.05, x, y, n, vx, vy);
+  ctx.finish();
+  auto t0 = std::chrono::steady_clock::now();
+  for (int k = 0; k < repeat; ++k) transfer.confinedToGrid(grid, x, y, vol, vol, vx, vy, H, M, Px, Py);
+  ctx.finish();
+  const double p2g = seconds(t0) / repeat;
+  t0 = std::chrono::steady_clock::now();
+  for (int k = 0; k < repeat; ++k) transfer.gridVelocityToParticles(Px, Py, H, M, 0.05, x, y, n, vx, vy);
+  ctx.finish();
+  const double g2p = seconds(t0) / repeat;
+  std::printf("transfer %8zu particles  %5dx%-5d cells  P2G %9.3f ms (%10.4g particles/s)  G2P %8.3f ms (%10.4g "
+              "particles/s)\n", n, side, side, 1e3 * p2g, static_cast<double>(n) / p2g, 1e3 * g2p,
+              static_cast<double>(n) / g2p);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -131,6 +168,7 @@ int main(int argc, char** argv) {
         benchSort(*ctx, std::strtoull(s.c_str(), nullptr, 10), std::strtoull(l.c_str(), nullptr, 10), repeat);
     std::printf("\n");
     for (const std::string& s : sizes) benchGrid(*ctx, std::strtoull(s.c_str(), nullptr, 10), perCell, repeat);
+    for (const std::string& s : sizes) benchTransfer(*ctx, std::strtoull(s.c_str(), nullptr, 10), repeat);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "bench_particles: %s\n", e.what());
     return 1;

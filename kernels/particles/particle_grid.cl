@@ -21,20 +21,26 @@
 // whole 4 x 4 stencil lies inside (1.5 dx <= x_p <= (n - 1.5) dx) and exact for constants anywhere.
 // Folding keeps P2G and G2P transposes of each other: sum_c f_c P2G(q)_c = sum_p q_p G2P(f)_p.
 //
-// P2G by gather (no atomics). One work-item per terrain cell sums over the particles that can reach
-// it. Those lie within 2 dx of its centre, in x in (x_c - 2 dx, x_c + 2 dx) (for an edge cell the
-// interval extends to the end of the neighbour grid on that side, for the folded weight). The
-// neighbour grid (neighbours.cl) has cells of edge cell_size = 2h (1 + tiny) with h the SPH smoothing
-// length; the 4 dx wide interval covers floor(4 dx / cell_size) + 1 or + 2 neighbour columns, that
-// is 3 (sometimes 2) columns for the usual h = dx, 5 for h = dx / 2, 2 for h = 2 dx; likewise for
-// rows. The range is computed from the interval, so any ratio works (cost grows with the square of
-// dx / h). The interval ends are widened by 1/64 of a neighbour cell, more than the rounding of the
-// computed cell coordinate (at most a few units of round-off times the cell count), so no particle
-// with non-zero weight is missed however the device rounds. The particles inside a neighbour cell
-// are visited in sorted order, cells row by row: the summation order depends only on the sorted
-// arrays, so the result is bitwise reproducible run to run. (A different input order of the same
-// particles changes the order within one neighbour cell, which follows the index before sorting, and
-// hence the sums by round-off only.)
+// P2G by gather (no atomics). Each terrain cell sums over the particles that can reach it; one
+// work-item does this for a block of 2 x 2 cells, reading each candidate particle once for the four
+// (for h = dx a block visits as many neighbour cells as a single cell would, so this quarters the
+// reads; each cell still adds the same particles in the same order as a gather of its own would). The
+// particles that reach a cell lie within 2 dx of its centre, x in (x_c - 2 dx, x_c + 2 dx), likewise
+// in y (for an edge cell the interval extends to the end of the neighbour grid on that side, for the
+// folded weight). The neighbour grid (neighbours.cl) has cells of edge cell_size = 2h (1 + tiny), h
+// the SPH smoothing length. A cell's interval is L = 4 dx / cell_size neighbour cells long and covers
+// ceil(L) or ceil(L) + 1 columns: 3 for the usual h = dx on the solver's grid (box = raster plus 2h,
+// so the interval ends fall near quarter cells), 5 for h = dx / 2, 2 or 3 for h = 2 dx; a block's
+// interval is dx longer (still 3 columns for h = dx). The range is computed from the interval, so any
+// ratio works. The interval ends are widened by 1/64 of a neighbour cell, more than the rounding of
+// the computed cell coordinate (a few units of round-off times the cell count), so no particle with a
+// non-zero weight is missed however the device rounds. Inside the range a position test against the
+// supports widened by a quarter cell rejects most particles without a weight before the spline is
+// evaluated (for h = dx a block visits 36 dx^2, and its cells' supports cover 25 dx^2 of that). The
+// particles inside a neighbour cell are visited in sorted order, cells row by row: the summation order
+// depends only on the sorted arrays, so the result is bitwise reproducible run to run. (A different
+// input order of the same particles changes the order within one neighbour cell, which follows the
+// index before sorting, and hence the sums by round-off only.)
 //
 // G2P: one work-item per particle interpolates cell fields with the same weights over its 4 x 4
 // stencil. The velocity transfer blends PIC and FLIP (Brackbill's FLIP, Zhu & Bridson 2005):
@@ -74,76 +80,125 @@ inline real pg_axis_weight(real f, int i, int n) {
   return w;
 }
 
-/// Neighbour-grid columns (or rows) that hold every particle with a non-zero weight for terrain cell
-/// i of n along an axis: the interval (c - 2 dx, c + 2 dx) around the centre c, open-ended on the side
-/// of an edge cell, widened by 1/64 cell and clamped to the grid. Returns (first, last), inclusive.
-inline int2 pg_neighbour_span(int i, int n, real dx, real lo_box, real cell_size, int cells) {
+/// Neighbour-grid columns (or rows) that hold every particle with a non-zero weight for the terrain
+/// cells first..last of n along an axis: the interval (c_first - 2 dx, c_last + 2 dx) around their
+/// centres, open-ended on the side of an edge cell, widened by 1/64 cell and clamped to the grid.
+/// Returns (first column, last column), inclusive.
+inline int2 pg_neighbour_span(int first, int last, int n, real dx, real lo_box, real cell_size, int cells) {
   const real margin = (real)0.015625;
   int2 r = (int2)(0, cells - 1);
-  if (i > 0) {
-    const real lo = ((real)i - (real)1.5) * dx;
-    const real q = clamp(floor((lo - lo_box) / cell_size - margin), (real)0, (real)(cells - 1));
-    r.x = (int)q;
+  if (first > 0) {
+    const real lo = ((real)first - (real)1.5) * dx;
+    r.x = (int)clamp(floor((lo - lo_box) / cell_size - margin), (real)0, (real)(cells - 1));
   }
-  if (i < n - 1) {
-    const real hi = ((real)i + (real)2.5) * dx;
-    const real q = clamp(floor((hi - lo_box) / cell_size + margin), (real)0, (real)(cells - 1));
-    r.y = (int)q;
+  if (last < n - 1) {
+    const real hi = ((real)last + (real)2.5) * dx;
+    r.y = (int)clamp(floor((hi - lo_box) / cell_size + margin), (real)0, (real)(cells - 1));
   }
   return r;
 }
 
-/// The neighbour-grid cells to visit for terrain cell (i, j) of an nx x ny raster with cells of dx.
-inline NeighbourCellRange pg_neighbour_cells_of_cell(__constant const NeighbourGridParams* g, int i, int j, int nx,
-                                                     int ny, real dx) {
-  const int2 sx = pg_neighbour_span(i, nx, dx, g->x_min, g->cell_size, g->cells_x);
-  const int2 sy = pg_neighbour_span(j, ny, dx, g->y_min, g->cell_size, g->cells_y);
-  NeighbourCellRange r;
-  r.x0 = sx.x, r.x1 = sx.y, r.y0 = sy.x, r.y1 = sy.y;
-  return r;
+/// A terrain block of PG_BLOCK x PG_BLOCK cells (clipped at the raster's far edges): one work-item
+/// of a P2G kernel. Its particles are read once for all its cells; each cell's sum still adds the
+/// same particles in the same order as a gather for that cell alone would (visiting more particles
+/// only adds terms that are skipped), so the blocking changes no result bit.
+#define PG_BLOCK 2
+
+typedef struct {
+  int i0, j0;                // lower-left cell
+  int ni, nj;                // cells in the block along x and y (1 or 2; ni = 0: no block)
+  NeighbourCellRange cells;  // neighbour-grid cells to visit
+  real4 reach;               // (x0, x1, y0, y1): particles outside have no weight in the block
+} PgBlock;
+
+/// Block b of an nx x ny raster (row-major over blocks); ni = 0 for a work-item past the end.
+inline PgBlock pg_block(__constant const NeighbourGridParams* g, int b, int nx, int ny, real dx) {
+  PgBlock k;
+  const int bx = (nx + PG_BLOCK - 1) / PG_BLOCK, by = (ny + PG_BLOCK - 1) / PG_BLOCK;
+  k.ni = 0, k.nj = 0, k.i0 = 0, k.j0 = 0;
+  if (b >= bx * by) return k;
+  k.i0 = PG_BLOCK * (b % bx), k.j0 = PG_BLOCK * (b / bx);
+  k.ni = min(PG_BLOCK, nx - k.i0), k.nj = min(PG_BLOCK, ny - k.j0);
+  const int i1 = k.i0 + k.ni - 1, j1 = k.j0 + k.nj - 1;
+  const int2 sx = pg_neighbour_span(k.i0, i1, nx, dx, g->x_min, g->cell_size, g->cells_x);
+  const int2 sy = pg_neighbour_span(k.j0, j1, ny, dx, g->y_min, g->cell_size, g->cells_y);
+  k.cells.x0 = sx.x, k.cells.x1 = sx.y, k.cells.y0 = sy.x, k.cells.y1 = sy.y;
+  // A cheap pre-filter: the support widened by a quarter cell (rounding never rejects a particle
+  // with a weight), open-ended towards the raster edge for the edge cells.
+  k.reach.s0 = k.i0 > 0 ? ((real)k.i0 - (real)1.75) * dx : -REAL_MAX;
+  k.reach.s1 = i1 < nx - 1 ? ((real)i1 + (real)2.75) * dx : REAL_MAX;
+  k.reach.s2 = k.j0 > 0 ? ((real)k.j0 - (real)1.75) * dx : -REAL_MAX;
+  k.reach.s3 = j1 < ny - 1 ? ((real)j1 + (real)2.75) * dx : REAL_MAX;
+  return k;
 }
 
-/// P2G of two particle weights and a momentum-like pair, one work-item per terrain cell c:
+/// The weights of the particle at (xp, yp) for the block's cells: w[r * PG_BLOCK + m] for cell
+/// (i0 + m, j0 + r) (0 for cells beyond the raster). Returns 0 when all of them are 0.
+inline int pg_block_weights(const PgBlock* k, real xp, real yp, int nx, int ny, real dx, real* w) {
+  const real fx = pg_centre_coord(xp, dx), fy = pg_centre_coord(yp, dx);
+  real wx[PG_BLOCK], wy[PG_BLOCK];
+  for (int m = 0; m < PG_BLOCK; ++m) {
+    wx[m] = m < k->ni ? pg_axis_weight(fx, k->i0 + m, nx) : (real)0;
+    wy[m] = m < k->nj ? pg_axis_weight(fy, k->j0 + m, ny) : (real)0;
+  }
+  int any = 0;
+  for (int r = 0; r < PG_BLOCK; ++r)
+    for (int m = 0; m < PG_BLOCK; ++m) {
+      w[r * PG_BLOCK + m] = wx[m] * wy[r];
+      any |= w[r * PG_BLOCK + m] != (real)0;
+    }
+  return any;
+}
+
+/// P2G of two particle weights and a momentum-like pair, for every terrain cell c:
 ///   out_a[c]  = scale_a sum_p w_pc a_p,
 ///   out_b[c]  = scale_b sum_p w_pc b_p,
 ///   out_bu[c] = scale_b sum_p w_pc b_p u_p,   out_bv[c] = scale_b sum_p w_pc b_p v_p,
-/// over the particles of the neighbour grid's tables (arrays in sorted order). Confined phase:
-/// a = volume, scale_a = 1 / dx^2 (thickness), b = mass, scale_b = 1 (mass, momentum). Released
-/// fluid: a = b = released volume, both scales 1 / dx^2 (added thickness, added discharge).
-/// With accumulate != 0 the results are added to the outputs instead of replacing them.
+/// over the particles of the neighbour grid's tables (arrays in sorted order); one work-item per
+/// block of PG_BLOCK x PG_BLOCK cells. Confined phase: a = volume, scale_a = 1 / dx^2 (thickness),
+/// b = mass, scale_b = 1 (mass, momentum). Released fluid: a = b = released volume, both scales
+/// 1 / dx^2 (added thickness, added discharge). With accumulate != 0 the results are added to the
+/// outputs instead of replacing them.
 __kernel void particles_to_grid(const int nx, const int ny, const real dx, __constant const NeighbourGridParams* ng,
                                 __global const uint* cell_start, __global const uint* cell_end,
                                 __global const real* x, __global const real* y, __global const real* a,
                                 __global const real* b, __global const real* u, __global const real* v,
                                 const real scale_a, const real scale_b, const int accumulate, __global real* out_a,
                                 __global real* out_b, __global real* out_bu, __global real* out_bv) {
-  const int c = get_global_id(0);
-  if (c >= nx * ny) return;
-  const int i = c % nx, j = c / nx;
-  const NeighbourCellRange cells = pg_neighbour_cells_of_cell(ng, i, j, nx, ny, dx);
-  real sa = 0, sb = 0, sbu = 0, sbv = 0;
-  for (int cy = cells.y0; cy <= cells.y1; ++cy)
-    for (int cx = cells.x0; cx <= cells.x1; ++cx) {
+  const PgBlock k = pg_block(ng, get_global_id(0), nx, ny, dx);
+  if (k.ni == 0) return;
+  real sa[PG_BLOCK * PG_BLOCK], sb[PG_BLOCK * PG_BLOCK], sbu[PG_BLOCK * PG_BLOCK], sbv[PG_BLOCK * PG_BLOCK];
+  for (int q = 0; q < PG_BLOCK * PG_BLOCK; ++q) sa[q] = sb[q] = sbu[q] = sbv[q] = (real)0;
+  for (int cy = k.cells.y0; cy <= k.cells.y1; ++cy)
+    for (int cx = k.cells.x0; cx <= k.cells.x1; ++cx) {
       const uint key = neighbour_cell_key(ng, cx, cy);
       for (uint p = cell_start[key]; p < cell_end[key]; ++p) {
-        const real wx = pg_axis_weight(pg_centre_coord(x[p], dx), i, nx);
-        if (wx == (real)0) continue;
-        const real w = wx * pg_axis_weight(pg_centre_coord(y[p], dx), j, ny);
-        if (w == (real)0) continue;
-        const real wb = w * b[p];
-        sa += w * a[p];
-        sb += wb;
-        sbu += wb * u[p];
-        sbv += wb * v[p];
+        const real xp = x[p], yp = y[p];
+        if (xp <= k.reach.s0 || xp >= k.reach.s1 || yp <= k.reach.s2 || yp >= k.reach.s3) continue;
+        real w[PG_BLOCK * PG_BLOCK];
+        if (!pg_block_weights(&k, xp, yp, nx, ny, dx, w)) continue;
+        const real ap = a[p], bp = b[p], up = u[p], vp = v[p];
+        for (int q = 0; q < PG_BLOCK * PG_BLOCK; ++q) {
+          if (w[q] == (real)0) continue;
+          const real wb = w[q] * bp;
+          sa[q] += w[q] * ap;
+          sb[q] += wb;
+          sbu[q] += wb * up;
+          sbv[q] += wb * vp;
+        }
       }
     }
-  out_a[c] = (accumulate ? out_a[c] : (real)0) + scale_a * sa;
-  out_b[c] = (accumulate ? out_b[c] : (real)0) + scale_b * sb;
-  out_bu[c] = (accumulate ? out_bu[c] : (real)0) + scale_b * sbu;
-  out_bv[c] = (accumulate ? out_bv[c] : (real)0) + scale_b * sbv;
+  for (int r = 0; r < k.nj; ++r)
+    for (int m = 0; m < k.ni; ++m) {
+      const int c = (k.j0 + r) * nx + k.i0 + m, q = r * PG_BLOCK + m;
+      out_a[c] = (accumulate ? out_a[c] : (real)0) + scale_a * sa[q];
+      out_b[c] = (accumulate ? out_b[c] : (real)0) + scale_b * sb[q];
+      out_bu[c] = (accumulate ? out_bu[c] : (real)0) + scale_b * sbu[q];
+      out_bv[c] = (accumulate ? out_bv[c] : (real)0) + scale_b * sbv[q];
+    }
 }
 
-/// P2G of an arbitrary particle field f weighted by q (mass or volume), one work-item per cell:
+/// P2G of an arbitrary particle field f weighted by q (mass or volume), one work-item per block:
 ///   mean == 0:  out[c] = sum_p w_pc q_p f_p,
 ///   mean != 0:  out[c] = sum_p w_pc q_p f_p / sum_p w_pc q_p  (0 where no particle reaches c).
 __kernel void particles_field_to_grid(const int nx, const int ny, const real dx,
@@ -151,25 +206,32 @@ __kernel void particles_field_to_grid(const int nx, const int ny, const real dx,
                                       __global const uint* cell_end, __global const real* x, __global const real* y,
                                       __global const real* q, __global const real* f, const int mean,
                                       __global real* out) {
-  const int c = get_global_id(0);
-  if (c >= nx * ny) return;
-  const int i = c % nx, j = c / nx;
-  const NeighbourCellRange cells = pg_neighbour_cells_of_cell(ng, i, j, nx, ny, dx);
-  real sq = 0, sqf = 0;
-  for (int cy = cells.y0; cy <= cells.y1; ++cy)
-    for (int cx = cells.x0; cx <= cells.x1; ++cx) {
+  const PgBlock k = pg_block(ng, get_global_id(0), nx, ny, dx);
+  if (k.ni == 0) return;
+  real sq[PG_BLOCK * PG_BLOCK], sqf[PG_BLOCK * PG_BLOCK];
+  for (int t = 0; t < PG_BLOCK * PG_BLOCK; ++t) sq[t] = sqf[t] = (real)0;
+  for (int cy = k.cells.y0; cy <= k.cells.y1; ++cy)
+    for (int cx = k.cells.x0; cx <= k.cells.x1; ++cx) {
       const uint key = neighbour_cell_key(ng, cx, cy);
       for (uint p = cell_start[key]; p < cell_end[key]; ++p) {
-        const real wx = pg_axis_weight(pg_centre_coord(x[p], dx), i, nx);
-        if (wx == (real)0) continue;
-        const real w = wx * pg_axis_weight(pg_centre_coord(y[p], dx), j, ny);
-        if (w == (real)0) continue;
-        const real wq = w * q[p];
-        sq += wq;
-        sqf += wq * f[p];
+        const real xp = x[p], yp = y[p];
+        if (xp <= k.reach.s0 || xp >= k.reach.s1 || yp <= k.reach.s2 || yp >= k.reach.s3) continue;
+        real w[PG_BLOCK * PG_BLOCK];
+        if (!pg_block_weights(&k, xp, yp, nx, ny, dx, w)) continue;
+        const real qp = q[p], fp = f[p];
+        for (int t = 0; t < PG_BLOCK * PG_BLOCK; ++t) {
+          if (w[t] == (real)0) continue;
+          const real wq = w[t] * qp;
+          sq[t] += wq;
+          sqf[t] += wq * fp;
+        }
       }
     }
-  out[c] = mean ? (sq != (real)0 ? sqf / sq : (real)0) : sqf;
+  for (int r = 0; r < k.nj; ++r)
+    for (int m = 0; m < k.ni; ++m) {
+      const int c = (k.j0 + r) * nx + k.i0 + m, t = r * PG_BLOCK + m;
+      out[c] = mean ? (sq[t] != (real)0 ? sqf[t] / sq[t] : (real)0) : sqf[t];
+    }
 }
 
 /// The 4 x 4 stencil of a particle for G2P: folded cell columns and rows and their weights.

@@ -29,6 +29,7 @@
 #define TALUS_GETPID getpid
 #endif
 
+#include "io/GdalErrors.hpp"
 #include "core/Error.hpp"
 
 namespace fs = std::filesystem;
@@ -39,47 +40,8 @@ namespace {
 /// Largest raster readRaster accepts: 2^31 cells (about 19 GB as values plus mask).
 constexpr unsigned long long kMaxCells = 1ull << 31;
 
-void ensureGdalRegistered() {
-  static std::once_flag once;
-  std::call_once(once, [] { GDALAllRegister(); });
-}
-
-/// While alive, routes this thread's GDAL errors away from stderr and collects the failure
-/// messages, so they can be put into our exception text.
-class GdalErrorScope {
- public:
-  GdalErrorScope() {
-    CPLErrorReset();
-    CPLPushErrorHandlerEx(&GdalErrorScope::handler, this);
-  }
-  ~GdalErrorScope() { CPLPopErrorHandler(); }
-  GdalErrorScope(const GdalErrorScope&) = delete;
-  GdalErrorScope& operator=(const GdalErrorScope&) = delete;
-
-  /// True once GDAL reported a failure (CE_Failure or CE_Fatal) inside this scope.
-  bool failed() const { return failures_ > 0; }
-
-  /// The collected failure messages, else GDAL's last message, else the fallback text.
-  std::string describe(const std::string& fallback) const {
-    if (!messages_.empty()) return messages_;
-    const char* last = CPLGetLastErrorMsg();
-    if (last != nullptr && *last != '\0') return last;
-    return fallback;
-  }
-
- private:
-  static void CPL_STDCALL handler(CPLErr cls, CPLErrorNum /*num*/, const char* msg) {
-    auto* self = static_cast<GdalErrorScope*>(CPLGetErrorHandlerUserData());
-    if (self == nullptr || (cls != CE_Failure && cls != CE_Fatal)) return;
-    ++self->failures_;
-    if (self->failures_ > 3 || msg == nullptr) return;  // the first few say enough
-    if (!self->messages_.empty()) self->messages_ += "; ";
-    self->messages_ += msg;
-  }
-
-  int failures_ = 0;
-  std::string messages_;
-};
+using detail::ensureGdalRegistered;
+using detail::GdalErrorScope;
 
 bool isVirtualPath(const std::string& path) { return path.rfind("/vsi", 0) == 0; }
 

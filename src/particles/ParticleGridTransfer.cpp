@@ -11,6 +11,14 @@ namespace talus::particles {
 namespace {
 
 constexpr const char* kFile = "particles/particle_grid.cl";
+constexpr std::size_t kBlock = 2;  // terrain cells per side of a P2G work-item (PG_BLOCK in the kernels)
+
+/// P2G work-items for a grid: one per block of kBlock x kBlock cells.
+compute::Range blocksOf(const Grid& g) {
+  const std::size_t bx = (static_cast<std::size_t>(g.nx) + kBlock - 1) / kBlock;
+  const std::size_t by = (static_cast<std::size_t>(g.ny) + kBlock - 1) / kBlock;
+  return compute::Range{bx * by};
+}
 
 }  // namespace
 
@@ -61,7 +69,7 @@ void ParticleGridTransfer::confinedToGrid(const NeighbourGrid& ng, const compute
   p2g_.bind(grid_.nx, grid_.ny, compute::RealArg{dx}, ng.params(), ng.cellStart(), ng.cellEnd(), x, y, volume, mass,
             vx, vy, compute::RealArg{1.0 / (dx * dx)}, compute::RealArg{1.0}, 0, thickness, cellMass, momentumX,
             momentumY);
-  p2g_.launch(compute::Range{grid_.cells()}, {0, 0}, "particles_to_grid");
+  p2g_.launch(blocksOf(grid_), {0, 0}, "particles_to_grid");
 }
 
 void ParticleGridTransfer::releasedToGrid(const NeighbourGrid& ng, const compute::RealBuffer& x,
@@ -80,7 +88,7 @@ void ParticleGridTransfer::releasedToGrid(const NeighbourGrid& ng, const compute
   p2g_.bind(grid_.nx, grid_.ny, compute::RealArg{grid_.dx}, ng.params(), ng.cellStart(), ng.cellEnd(), x, y,
             releasedVolume, releasedVolume, vx, vy, perArea, perArea, accumulate ? 1 : 0, fluidThickness, scratch_,
             dischargeX, dischargeY);
-  p2g_.launch(compute::Range{grid_.cells()}, {0, 0}, "particles_released_to_grid");
+  p2g_.launch(blocksOf(grid_), {0, 0}, "particles_released_to_grid");
 }
 
 void ParticleGridTransfer::fieldToGrid(const NeighbourGrid& ng, const compute::RealBuffer& x,
@@ -94,7 +102,7 @@ void ParticleGridTransfer::fieldToGrid(const NeighbourGrid& ng, const compute::R
   }
   p2gField_.bind(grid_.nx, grid_.ny, compute::RealArg{grid_.dx}, ng.params(), ng.cellStart(), ng.cellEnd(), x, y,
                  weight, field, mode == FieldTransfer::WeightedMean ? 1 : 0, out);
-  p2gField_.launch(compute::Range{grid_.cells()}, {0, 0}, "particles_field_to_grid");
+  p2gField_.launch(blocksOf(grid_), {0, 0}, "particles_field_to_grid");
 }
 
 void ParticleGridTransfer::gridToParticles(const compute::RealBuffer& field, const compute::RealBuffer& x,

@@ -11,7 +11,8 @@
 // arrays by its order (every particle buffer passed must be in that sorted order and hold at least
 // grid.count() entries); it sums over the particles inside the neighbour grid's box (the first
 // readInsideCount() sorted ones). Any ratio of the neighbour cell size to dx works; h = dx (cell
-// 2 dx) visits 3 x 3 neighbour cells per terrain cell. G2P needs no neighbour grid.
+// 2 dx) visits 3 x 3 neighbour cells per work-item, a block of 2 x 2 terrain cells. G2P needs no
+// neighbour grid.
 #pragma once
 #include <cstddef>
 #include <initializer_list>

@@ -105,6 +105,7 @@ ParticleSolver::ParticleSolver(compute::Context& ctx, const Grid& grid, const Pa
   gradX_.upload(gx);
   gradY_.upload(gy);
   gn_.upload(gn);
+  gnHost_ = gn;
   params_ = compute::RawBuffer(ctx, sizeof(ParticleParamsT<double>), "particle parameters");
   density_ = compute::Kernel(ctx.program("particles/particle_density.cl"), "particle_density");
   stress_ = compute::Kernel(ctx.program("particles/particle_stress.cl"), "particle_stress");
@@ -127,6 +128,7 @@ void ParticleSolver::setParticles(const SeededParticles& seeded, const ParticleM
   count_ = n;
   auto make = [&](compute::RealBuffer& b, const char* label) { b = compute::RealBuffer(ctx_, capacity_, label); };
   make(A_, "particle area"), make(V_, "particle volume"), make(div_, "particle divergence");
+  make(fsc0_, "particle initial structured fraction"), make(ffc0_, "particle initial confined fraction");
   make(x_, "particle x"), make(y_, "particle y"), make(vx_, "particle vx"), make(vy_, "particle vy");
   make(m_, "particle mass"), make(rho_, "particle density"), make(phi_, "particle phi"), make(delta_, "particle delta");
   make(coh_, "particle cohesion"), make(coh0_, "particle initial cohesion"), make(sxx_, "particle sxx");
@@ -143,6 +145,8 @@ void ParticleSolver::setParticles(const SeededParticles& seeded, const ParticleM
   }
   const std::vector<double> zero(n, 0.0);
   A_.upload(seeded.area), V_.upload(seeded.volume);
+  fsc0_.upload(material.structured.empty() ? std::vector<double>(n, 1.0) : perParticle(material.structured, n, "structured"));
+  ffc0_.upload(material.confined.empty() ? std::vector<double>(n, 1.0) : perParticle(material.confined, n, "confined"));
   x_.upload(seeded.x), y_.upload(seeded.y), vx_.upload(zero), vy_.upload(zero), m_.upload(seeded.mass);
   rho_.upload(rho), phi_.upload(phi), delta_.upload(delta), coh_.upload(coh), coh0_.upload(coh);
   sxx_.upload(zero), syy_.upload(zero), sxy_.upload(zero), plastic_.upload(zero);
@@ -202,7 +206,7 @@ void ParticleSolver::step(double dt) {
 
 void ParticleSolver::reorderAll() {
   for (compute::RealBuffer* f : {&x_, &y_, &vx_, &vy_, &m_, &rho_, &phi_, &delta_, &coh_, &coh0_, &sxx_, &syy_, &sxy_,
-                                 &plastic_, &A_, &V_})
+                                 &plastic_, &A_, &V_, &fsc0_, &ffc0_})
     neighbours_->reorder(*f);
 }
 
@@ -256,7 +260,8 @@ ParticleState ParticleSolver::state() const {
   };
   s.x = get(x_), s.y = get(y_), s.vx = get(vx_), s.vy = get(vy_), s.mass = get(m_);
   s.sxx = get(sxx_), s.syy = get(syy_), s.sxy = get(sxy_), s.cohesion = get(coh_), s.cohesion0 = get(coh0_);
-  s.plastic = get(plastic_), s.H = get(H_);
+  s.plastic = get(plastic_), s.H = get(H_), s.density = get(rho_);
+  s.Nxx = get(Nxx_), s.Nyy = get(Nyy_), s.Nxy = get(Nxy_), s.structured0 = get(fsc0_), s.confined0 = get(ffc0_);
   return s;
 }
 

@@ -34,11 +34,16 @@ struct ParticleMaterial {
   std::vector<double> phi;       ///< internal friction angle [rad]
   std::vector<double> delta;     ///< bed friction angle [rad]
   std::vector<double> cohesion;  ///< initial cohesion c0 [Pa]
+  std::vector<double> structured;  ///< initial f_sc (empty: 1)
+  std::vector<double> confined;    ///< initial f_fc (empty: 1)
 };
 
 /// Host copy of the particle state (live particles only, in the solver's current order).
 struct ParticleState {
   std::vector<double> x, y, vx, vy, mass, sxx, syy, sxy, cohesion, cohesion0, plastic, H;
+  std::vector<double> density;          ///< rho_c [kg/m^3]
+  std::vector<double> Nxx, Nyy, Nxy;    ///< depth-integrated total in-plane stress of the last sub-step [Pa m]
+  std::vector<double> structured0, confined0;  ///< initial f_sc, f_fc
   std::size_t size() const { return x.size(); }
 };
 
@@ -69,6 +74,8 @@ class ParticleSolver {
   const ParticleDiagnostics& diagnostics() const { return diag_; }
   ParticleState state() const;
   std::size_t count() const { return count_; }
+  /// g_n per terrain cell [m/s^2] (host copy of what the kernels use).
+  const std::vector<double>& gn() const { return gnHost_; }
   double smoothingLength() const { return h_; }
   double time() const { return time_; }
 
@@ -91,7 +98,8 @@ class ParticleSolver {
   compute::Buffer<uint8_t> mask_;
   compute::RealBuffer gradX_, gradY_, gn_;
   // Particle fields (reordered together at every neighbour build).
-  compute::RealBuffer x_, y_, vx_, vy_, m_, rho_, phi_, delta_, coh_, coh0_, sxx_, syy_, sxy_, plastic_, A_, V_;
+  compute::RealBuffer x_, y_, vx_, vy_, m_, rho_, phi_, delta_, coh_, coh0_, sxx_, syy_, sxy_, plastic_, A_, V_, fsc0_, ffc0_;
+  std::vector<double> gnHost_;
   // Per sub-step scratch (not reordered).
   compute::RealBuffer rhoA_, H_, Nxx_, Nyy_, Nxy_, Minv_, div_, ax_, ay_, outMass_, speed_;
   compute::Kernel density_, stress_, forces_, integrate_, speedKernel_;

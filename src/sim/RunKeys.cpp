@@ -131,6 +131,30 @@ void addSolidKeys(KeyRegistry& r) {
               "xi: damping -xi alpha_s nu_RA (u_f - u_s) / H^2 of the relative motion (needs N_RA > 0)");
 }
 
+/// Structured solids as particles (hybrid mode, spec §5): OpenLISEM Hazard's names first.
+void addParticleKeys(KeyRegistry& r) {
+  Section(r, "Particles")
+      << flag("Use Material Point Method", "0", "structured solids as elasto-plastic particles (hybrid mode)")
+      << map("Structured Fraction", "1", "-", 0, 1, "f_sc: share of the initial solids that is structured (particles)")
+      << map("Confined Fluid Fraction", "1", "-", 0, 1, "f_fc: share of the initial fluid held in the structured solids")
+      << real("Elastic Modulus", "1e7", "Pa", 1e3, 1e13, "Young's modulus E of the structured material")
+      << real("Poisson Ratio", "0.3", "-", 0, 0.49, "Poisson ratio nu (used when Shear Modulus is 0)")
+      << real("Shear Modulus", "0", "Pa", 0, 1e13, "shear modulus G; > 0 sets nu = E / (2 G) - 1")
+      << real("Particle Fractional Dimension", "0", "m^3", 0, 1e12,
+              "particle volume V_I (OpenLISEM Hazard); 0: from Particles Per Cell")
+      << real("Particles Per Cell", "4", "-", 1, 400, "particles in the thickest cell when V_I is 0")
+      << real("Critical Strain", "0.1", "-", 1e-6, 10, "epsilon_c of the cohesion degradation while yielding (P.26)")
+      << real("Dilatancy Angle", "0", "rad", 0, 1.5, "psi of the plastic flow")
+      << real("Sound Speed", "0", "m/s", 0, 1e6,
+              "c of the time step and artificial viscosity; 0: elastic sqrt((K + 4G/3) / rho)")
+      << real("Smoothing Length Factor", "1", "-", 0.5, 3, "SPH smoothing length h in cells (paper: 1)")
+      << real("Particle CFL", "0.2", "-", 0.01, 1, "particle sub-step dt = CFL h / (c + |v|max)")
+      << real("Artificial Viscosity Alpha", "1", "-", 0, 10, "alpha_Pi of Monaghan's artificial viscosity (P.83)")
+      << real("Artificial Viscosity Beta", "1", "-", 0, 10, "beta_Pi of Monaghan's artificial viscosity (P.83)")
+      << real("Artificial Stress Epsilon", "0.3", "-", 0, 1, "epsilon_0 of the artificial stress against tensile clumping (P.85)")
+      << real("Artificial Stress Exponent", "4", "-", 1, 8, "n of the artificial stress (P.86)");
+}
+
 void addTimeKeys(KeyRegistry& r) {
   Section(r, "Time")
       << real("Start Time", "0", "min", 0, 1e6, "simulated time at the start")
@@ -184,6 +208,7 @@ KeyRegistry buildKeys() {
   KeyRegistry r;
   addInputKeys(r);
   addSolidKeys(r);
+  addParticleKeys(r);
   addTimeKeys(r);
   addFlowKeys(r);
   addNumericsKeys(r);

@@ -85,20 +85,74 @@ Scene loadScene(const io::RunConfig& cfg) {
     s.flow.h.assign(g.cells(), 0.0);
 
   flow::FlowSettings& f = s.settings;
+  s.particles.enabled = cfg.flag("Use Material Point Method");
   if (cfg.flag("Include Initial Solids")) {
     std::vector<double> hs = loadMap(cfg, "Initial Solid Height", s.dem, demKey.file);
+    std::vector<double> rhoS = loadMap(cfg, "Initial Solid Density", s.dem, demKey.file);
+    std::vector<double> phi = loadMap(cfg, "Initial Solid IFA", s.dem, demKey.file);
+    std::vector<double> cohesion = loadMap(cfg, "Initial Cohesion", s.dem, demKey.file);
+    for (double& c : cohesion) c *= 1000.0;  // kPa (OpenLISEM Hazard) -> Pa
+    std::vector<double> delta = loadMap(cfg, "Bed Friction Angle", s.dem, demKey.file);
+    if (s.particles.enabled) {
+      // Hybrid mode: the structured solids (with the fluid they hold) become particles; the grid
+      // keeps the unstructured solids and the free fluid.
+      InitialMaterial m;
+      m.mask = s.dem.valid;
+      m.bed = s.dem.values;
+      m.hs = hs;
+      m.hf = s.flow.h;
+      m.rhoS = rhoS;
+      m.rhoF = cfg.real("Fluid Density");
+      m.phi = phi;
+      m.delta = cfg.flag("Bed Friction Equals IFA") ? phi : delta;
+      m.cohesion = cohesion;
+      m.structured = loadMap(cfg, "Structured Fraction", s.dem, demKey.file);
+      m.confined = loadMap(cfg, "Confined Fluid Fraction", s.dem, demKey.file);
+      s.particles.spacing.volume = cfg.real("Particle Fractional Dimension");
+      s.particles.spacing.perCell = cfg.real("Particles Per Cell");
+      splitStructured(s.dem.grid, m, s.particles);
+      hs = m.hs;
+      s.flow.h = m.hf;
+      s.particles.terrain.slopeCorrection = cfg.flag("Slope Correction");
+    }
     bool any = false;
     for (std::size_t k = 0; k < hs.size(); ++k) any = any || (s.dem.valid[k] && hs[k] > 0.0);
-    // A scene with no solids runs exactly the single-phase path (spec §3, issue: grid mode).
+    // A scene with no solids on the grid runs exactly the single-phase path (spec §3, grid mode).
     if (any) {
       f.twoPhase = true;
       s.flow.hs = std::move(hs);
-      s.flow.rhoS = loadMap(cfg, "Initial Solid Density", s.dem, demKey.file);
-      s.flow.phi = loadMap(cfg, "Initial Solid IFA", s.dem, demKey.file);
+      s.flow.rhoS = std::move(rhoS);
+      s.flow.phi = std::move(phi);
       s.flow.grain = loadMap(cfg, "Initial Solid Rocksize", s.dem, demKey.file);
-      s.flow.cohesion = loadMap(cfg, "Initial Cohesion", s.dem, demKey.file);
-      for (double& c : s.flow.cohesion) c *= 1000.0;  // kPa (OpenLISEM Hazard) -> Pa
-      s.flow.delta = loadMap(cfg, "Bed Friction Angle", s.dem, demKey.file);
+      s.flow.cohesion = std::move(cohesion);
+      s.flow.delta = std::move(delta);
+    }
+  }
+  if (s.particles.enabled) {
+    particles::ParticleSettings& ps = s.particles.settings;
+    ps.youngModulus = cfg.real("Elastic Modulus");
+    const double G = cfg.real("Shear Modulus");
+    ps.poisson = G > 0 ? ps.youngModulus / (2 * G) - 1 : cfg.real("Poisson Ratio");
+    if (!(ps.poisson > -1 && ps.poisson < 0.5))
+      throw InputError(cfg.origin("Shear Modulus") + ": key 'Shear Modulus': " + io::formatNumber(G) +
+                       " Pa with Elastic Modulus " + io::formatNumber(ps.youngModulus) + " Pa gives Poisson ratio " +
+                       io::formatNumber(ps.poisson) + ", not below 0.5: the shear modulus must exceed E/3");
+    ps.soundSpeed = cfg.real("Sound Speed");
+    ps.smoothingFactor = cfg.real("Smoothing Length Factor");
+    ps.cfl = cfg.real("Particle CFL");
+    ps.alphaPi = cfg.real("Artificial Viscosity Alpha");
+    ps.betaPi = cfg.real("Artificial Viscosity Beta");
+    ps.epsArt = cfg.real("Artificial Stress Epsilon");
+    ps.nArt = cfg.real("Artificial Stress Exponent");
+    ps.dilatancy = cfg.real("Dilatancy Angle");
+    ps.epsCrit = cfg.real("Critical Strain");
+    ps.poreB = cfg.real("Pore Pressure Factor");
+    ps.earthPressure = cfg.choice("Earth Pressure") == "constant" ? particles::ParticleEarthPressure::Constant
+                                                                  : particles::ParticleEarthPressure::SavageHutter;
+    ps.kConst = cfg.real("Earth Pressure Coefficient");
+    if (s.particles.terrain.mask.empty()) {  // no solids at all: a run without particles
+      s.particles.terrain.mask = s.dem.valid;
+      s.particles.terrain.bed = s.dem.values;
     }
   }
   flow::DebrisSettings& d = f.debris;

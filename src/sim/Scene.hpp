@@ -8,6 +8,7 @@
 #include "flow/FlowSolver.hpp"
 #include "io/RasterIO.hpp"
 #include "io/RunConfig.hpp"
+#include "sim/ParticleScene.hpp"
 
 namespace talus::sim {
 
@@ -16,6 +17,7 @@ struct Scene {
   Raster dem;                    ///< DEM as read: grid, georeference, nodata mask
   flow::FlowInput flow;          ///< initial fields for the flow solver
   flow::FlowSettings settings;
+  ParticleScene particles;       ///< hybrid mode: structured solids as particles
   double startTime = 0;          ///< [s]
   double endTime = 60;           ///< [s]
   double reportInterval = 10;    ///< [s]

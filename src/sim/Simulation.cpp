@@ -15,7 +15,8 @@ namespace {
 
 constexpr const char* kCsvHeader =
     "step,time_s,dt_s,volume_m3,outflow_m3,cumulative_outflow_m3,balance_error,kinetic_energy_J,max_wave_speed_m_s,"
-    "fluid_volume_m3,solid_volume_m3,fluid_outflow_m3,solid_outflow_m3,wall_s";
+    "fluid_volume_m3,solid_volume_m3,fluid_outflow_m3,solid_outflow_m3,wall_s,"
+    "particles,particle_mass_kg,particle_outflow_kg,particle_kinetic_J";
 
 /// Total volume (both phases) and total outflow of the last step.
 double totalVolume(const flow::FlowDiagnostics& d) { return d.volume + d.volumeSolid; }
@@ -43,6 +44,12 @@ Simulation::Simulation(const Scene& scene, const io::RunConfig& config, const st
   health_ = std::make_unique<HealthCheck>(scene.dem, scene.flow, scene.settings.cfl);
   for (uint8_t v : scene.dem.valid) domainCells_ += v;
   initialVolume_ = totalVolume(solver_->diagnostics());
+  if (scene.particles.enabled && !scene.particles.seeded.x.empty()) {
+    if (mode == OutputMode::Resume)
+      throw InputError("run '" + scene.runFile + "': resuming a run with particles (Use Material Point Method=1) "
+                       "is not supported yet; start it again");
+    particles_ = std::make_unique<ParticleRun>(*ctx_, scene.dem, scene.particles);
+  }
   if (mode != OutputMode::Resume) {
     out_->writeText("run.resolved.run", config.echo());
     return;
@@ -77,6 +84,11 @@ void Simulation::writeReport() {
     if (h[k] > scene_.settings.hDry) v[k] = std::hypot(qx[k], qy[k]) / h[k];
   out_->writeMap(hName, h);
   out_->writeMap(vName, v);
+  if (particles_) {
+    char pName[64];
+    std::snprintf(pName, sizeof pName, "particles/particles_%04d.gpkg", index);
+    particles_->writeLayer(out_->path(pName));
+  }
   if (solver_->twoPhase()) {
     char sName[64];
     std::snprintf(sName, sizeof sName, "series/hs_%04d", index);
@@ -142,11 +154,13 @@ Progress Simulation::stepOnce() {
   // taken at the first step end after they are due, so they never change the time steps.
   const double target = std::min(nextReport_, tEnd);
   double dt = solver_->stableDt();
+  if (particles_) dt = std::min(dt, particles_->maxStep());
   if (!(dt < target - t)) dt = target - t;
   solver_->step(dt);
   if (std::fabs(solver_->time() - target) <= 1e-12 * std::max(1.0, std::fabs(target))) solver_->setTime(target);
   ++steps_;
-  const std::string problem = health_->check(*solver_, dt);
+  std::string problem = health_->check(*solver_, dt);
+  if (problem.empty() && particles_) problem = particles_->step(dt, solver_->time());
   if (!problem.empty()) {
     std::ostringstream o;
     o << "simulation unstable at t = " << solver_->time() << " s (step " << steps_ << ", dt = " << dt
@@ -162,10 +176,10 @@ Progress Simulation::stepOnce() {
   // The single-phase diagnostics give kinetic energy per unit density; the two-phase ones joules.
   const double kinetic = solver_->twoPhase() ? d.kinetic : scene_.settings.debris.fluidDensity * d.kinetic;
   char line[512];
-  std::snprintf(line, sizeof line, "%lld,%.9g,%.6g,%.12g,%.6g,%.12g,%.3e,%.6g,%.6g,%.12g,%.12g,%.6g,%.6g,%.4f", steps_,
+  std::snprintf(line, sizeof line, "%lld,%.9g,%.6g,%.12g,%.6g,%.12g,%.3e,%.6g,%.6g,%.12g,%.12g,%.6g,%.6g,%.4f,", steps_,
                 solver_->time(), dt, volume, totalOutflow(d), totalOutflow_, balance, kinetic, d.maxSpeed, d.volume,
                 d.volumeSolid, d.outflow, d.outflowSolid, wall());
-  out_->appendDiagnostics(kCsvHeader, line);
+  out_->appendDiagnostics(kCsvHeader, std::string(line) + (particles_ ? particles_->csvRow() : "0,0,0,0"));
   if (solver_->time() >= nextReport_ * (1 - 1e-15)) {
     writeReport();
     nextReport_ = t0 + reportIndex_ * interval;
@@ -173,7 +187,8 @@ Progress Simulation::stepOnce() {
   const double ckInterval = scene_.checkpointInterval;
   const bool simDue = solver_->time() >= nextCheckpoint_ * (1 - 1e-15);
   const bool wallDue = scene_.checkpointWallInterval > 0 && wall() - lastCheckpointWall_ >= scene_.checkpointWallInterval;
-  if ((simDue || wallDue) && solver_->time() < tEnd * (1 - 1e-15)) {
+  // Checkpoints hold the grid state only: runs with particles take none (they cannot resume yet).
+  if ((simDue || wallDue) && !particles_ && solver_->time() < tEnd * (1 - 1e-15)) {
     writeCheckpoint(wall());
     lastCheckpointWall_ = wall();
   }
@@ -234,6 +249,7 @@ void Simulation::writeFinal(const RunSummary& s, Ending ending) {
       out_->writeMap("deposit", deposit);
     }
   }
+  if (particles_) particles_->writeLayer(out_->path("particles_final.gpkg"));
   out_->writeText("summary.json", summaryJson(s, ending));
 }
 
@@ -255,7 +271,12 @@ std::string Simulation::summaryJson(const RunSummary& s, Ending ending) const {
     << "  \"simulated_s\": " << s.simulatedSeconds << ",\n  \"steps\": " << s.steps << ",\n"
     << "  \"wall_time_s\": " << s.wallSeconds << ",\n  \"cell_updates_per_s\": " << s.cellUpdatesPerSecond << ",\n"
     << "  \"volume\": {\"initial_m3\": " << s.initialVolume << ", \"final_m3\": " << s.finalVolume
-    << ", \"outflow_m3\": " << s.totalOutflow << ", \"balance_error\": " << s.volumeBalanceError << "}\n}\n";
+    << ", \"outflow_m3\": " << s.totalOutflow << ", \"balance_error\": " << s.volumeBalanceError << "}";
+  if (particles_)
+    o << ",\n  \"particles\": {\"count\": " << particles_->count() << ", \"initial_mass_kg\": " << particles_->initialMass()
+      << ", \"final_mass_kg\": " << particles_->mass() << ", \"outflow_kg\": " << particles_->cumulativeOutflow()
+      << ", \"balance_error\": " << particles_->balanceError() << "}";
+  o << "\n}\n";
   return o.str();
 }
 

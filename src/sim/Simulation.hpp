@@ -11,6 +11,7 @@
 #include "io/RunConfig.hpp"
 #include "sim/HealthCheck.hpp"
 #include "sim/OutputWriter.hpp"
+#include "sim/ParticleRun.hpp"
 #include "sim/ParticleView.hpp"
 #include "sim/Scene.hpp"
 
@@ -72,9 +73,8 @@ class Simulation {
   /// Writes the final maps and summary.json and returns the summary. Before atEnd() this stops the
   /// run early: the outputs describe the state reached and summary.json says "status": "stopped".
   RunSummary finish();
-  /// The particles of this run for viewers, or nullptr when the run has none (the particle model
-  /// provides one once it is part of the loop).
-  const ParticleView* particleView() const { return particleView_; }
+  /// The particles of this run for viewers, or nullptr when the run has none.
+  const ParticleView* particleView() const { return particles_.get(); }
   const Scene& scene() const { return scene_; }
   /// Steps taken so far (including those before a resume).
   long long steps() const { return steps_; }
@@ -99,6 +99,7 @@ class Simulation {
   std::unique_ptr<flow::FlowSolver> solver_;
   std::unique_ptr<OutputWriter> out_;
   std::unique_ptr<HealthCheck> health_;
+  std::unique_ptr<ParticleRun> particles_;  ///< hybrid mode only
   std::size_t domainCells_ = 0;
   std::string failure_;
   // Loop bookkeeping (restored on resume).
@@ -107,7 +108,6 @@ class Simulation {
   double initialVolume_ = 0, totalOutflow_ = 0, wallBefore_ = 0;
   std::string seriesIndex_ = "index,time_s,h_file,v_file\n";
   int checkpoints_ = 0;
-  const ParticleView* particleView_ = nullptr;
   // State of the step-wise loop (begin() .. finish()).
   bool begun_ = false, finished_ = false;
   std::chrono::steady_clock::time_point start_;

@@ -17,6 +17,7 @@
 #include "compute/Device.hpp"
 #include "core/Grid.hpp"
 #include "core/Raster.hpp"
+#include "io/ParticleLayerIO.hpp"
 #include "io/RasterIO.hpp"
 
 #ifndef TALUS_BINARY
@@ -200,3 +201,42 @@ TEST_F(Cli, BogusDeviceExits3ListingDevices) {
 
 // An unstable run (exit status 4 when the health check trips) is not tested here: no honest tiny
 // scene makes the solver produce NaN or a negative thickness. Robustness tests come later.
+
+// Hybrid mode end to end: a cohesive layer over the whole scene at rest on a 2.5 % slope (bed
+// friction 30 degrees holds it, cohesion 100 kPa leaves no lateral push) becomes particles, runs,
+// and writes the particle layers, the particle columns of diagnostics.csv and the particle mass
+// balance in summary.json; nothing moves (the terrain force stays below friction, so the implicit
+// friction keeps every particle exactly at rest) and no particle is lost.
+TEST_F(Cli, HybridRunWritesParticleLayers) {
+  writeScene(
+      "[Solids]\nInclude Initial Solids=1\nInitial Solid Height=2\nInitial Cohesion=100\n"
+      "[Particles]\nUse Material Point Method=1\nElastic Modulus=1e7\n");
+  const Outcome r = talus("run case.run");
+  ASSERT_EQ(r.status, 0) << r;
+  const std::string json = slurp(dir_ / "out/summary.json");
+  // Seeding: the thickest cells (2 m of solids + 0.5 m of confined water) get the 4 particles per
+  // cell, the others round(2 / 2.5 * 4) = 3: 30 x 4 + 290 x 3 = 990.
+  EXPECT_TRUE(contains(json, "\"particles\": {\"count\": 990,")) << json;
+  EXPECT_TRUE(contains(json, "\"balance_error\": 0}")) << json;
+  const std::string csv = slurp(dir_ / "out/diagnostics.csv");
+  EXPECT_TRUE(contains(csv, ",particles,particle_mass_kg,particle_outflow_kg,particle_kinetic_J\n")) << csv.substr(0, 400);
+  ASSERT_TRUE(fs::is_regular_file(dir_ / "out/particles/particles_0000.gpkg"));
+  const talus::io::ParticleLayer layer = talus::io::readParticleLayer((dir_ / "out/particles_final.gpkg").string());
+  ASSERT_EQ(layer.size(), 990u);
+  const std::vector<double>* speed = layer.find("speed");
+  const std::vector<double>* frac = layer.find("cohesion_fraction");
+  ASSERT_TRUE(speed && frac);
+  for (std::size_t q = 0; q < layer.size(); ++q) {
+    EXPECT_EQ((*speed)[q], 0.0) << q;
+    EXPECT_EQ((*frac)[q], 1.0) << q;
+  }
+}
+
+TEST_F(Cli, HybridRunRejectsImpossibleShearModulus) {
+  writeScene("[Solids]\nInclude Initial Solids=1\nInitial Solid Height=1\n"
+             "[Particles]\nUse Material Point Method=1\nElastic Modulus=1e7\nShear Modulus=1e6\n");
+  const Outcome r = talus("run case.run");
+  EXPECT_EQ(r.status, 2) << r;
+  EXPECT_TRUE(contains(r.err, "case.run")) << r;
+  EXPECT_TRUE(contains(r.err, "Shear Modulus")) << r;
+}

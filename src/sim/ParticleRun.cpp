@@ -1,0 +1,143 @@
+#include "sim/ParticleRun.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <sstream>
+
+#include "io/ParticleLayerIO.hpp"
+
+namespace talus::sim {
+
+ParticleRun::ParticleRun(compute::Context& ctx, const Raster& dem, const ParticleScene& scene) : dem_(dem) {
+  solver_ = std::make_unique<particles::ParticleSolver>(ctx, dem.grid, scene.terrain, scene.settings);
+  solver_->setParticles(scene.seeded, scene.material);
+  initialMass_ = solver_->diagnostics().mass;
+}
+
+double ParticleRun::maxStep() { return 200 * solver_->stableSubStep(); }
+
+std::string ParticleRun::step(double dt, double time) {
+  solver_->step(dt);
+  cacheValid_ = false;
+  const particles::ParticleDiagnostics& d = solver_->diagnostics();
+  outflow_ += d.outflowMass;
+  // A particle faster than the elastic wave speed times 10 (or NaN) means the explicit scheme has
+  // blown up: no physical flow on a DEM gets there.
+  if (!std::isfinite(d.maxSpeed) || !std::isfinite(d.kinetic)) {
+    std::ostringstream o;
+    o << "particles: non-finite velocity at t = " << time << " s (" << d.count << " particles)";
+    return o.str();
+  }
+  return "";
+}
+
+double ParticleRun::balanceError() const {
+  return initialMass_ > 0 ? (mass() + outflow_ - initialMass_) / initialMass_ : 0.0;
+}
+
+std::string ParticleRun::csvRow() const {
+  const particles::ParticleDiagnostics& d = solver_->diagnostics();
+  char line[160];
+  std::snprintf(line, sizeof line, "%zu,%.12g,%.6g,%.6g", d.count, d.mass, d.outflowMass, d.kinetic);
+  return line;
+}
+
+void ParticleRun::writeLayer(const std::string& path) const {
+  const particles::ParticleState& s = state();
+  const Grid& g = dem_.grid;
+  const std::vector<double>& gn = solver_->gn();
+  const std::size_t n = s.size();
+  io::ParticleRecords r;
+  r.x = s.x;
+  r.y = s.y;
+  std::vector<double> vx(n), vy(n), speed(n), I1(n), sqrtJ2(n), frac(n), fsc(n), ffc(n);
+  for (std::size_t q = 0; q < n; ++q) {
+    const auto [ex, ny] = io::gridFrameVectorToWorld(g, s.vx[q], s.vy[q]);
+    vx[q] = ex, vy[q] = ny;
+    speed[q] = std::hypot(s.vx[q], s.vy[q]);
+    // Total stress: the depth-integrated in-plane stress over H, and the overburden (P.41).
+    const double H = s.H[q];
+    const int i = std::min(std::max(static_cast<int>(s.x[q] / g.dx), 0), g.nx - 1);
+    const int j = std::min(std::max(static_cast<int>(s.y[q] / g.dx), 0), g.ny - 1);
+    const double xx = H > 0 ? s.Nxx[q] / H : 0, yy = H > 0 ? s.Nyy[q] / H : 0, xy = H > 0 ? s.Nxy[q] / H : 0;
+    const double zz = -0.5 * s.density[q] * gn[g.index(i, j)] * H;
+    const double p2 = 0.5 * (xx + yy), d = 0.5 * (xx - yy);
+    I1[q] = xx + yy + zz;
+    sqrtJ2[q] = std::sqrt(d * d + xy * xy + (p2 - zz) * (p2 - zz) / 3);
+    frac[q] = s.cohesion0[q] > 0 ? s.cohesion[q] / s.cohesion0[q] : 1.0;
+    fsc[q] = s.structured0[q] * frac[q];
+    ffc[q] = s.confined0[q] * frac[q];
+  }
+  r.add("vx", std::move(vx));
+  r.add("vy", std::move(vy));
+  r.add("speed", std::move(speed));
+  r.add("I1", std::move(I1));
+  r.add("sqrtJ2", std::move(sqrtJ2));
+  r.add("cohesion_fraction", std::move(frac));
+  r.add("f_sc", std::move(fsc));
+  r.add("f_fc", std::move(ffc));
+  r.add("plastic_strain", s.plastic);
+  r.add("mass", s.mass);
+  r.add("thickness", s.H);
+  std::filesystem::create_directories(std::filesystem::path(path).parent_path());
+  io::writeParticleLayer(path, g, r);
+}
+
+const particles::ParticleState& ParticleRun::state() const {
+  if (!cacheValid_) {
+    cache_ = solver_->state();
+    cacheValid_ = true;
+  }
+  return cache_;
+}
+
+std::size_t ParticleRun::count() const { return solver_->diagnostics().count; }
+
+std::vector<ParticleAttributeInfo> ParticleRun::attributes() const {
+  return {{"velocity", "m/s"}, {"stress invariant", "Pa"}, {"cohesion fraction", "-"}, {"thickness", "m"}};
+}
+
+std::vector<float> ParticleRun::positions() const {
+  const particles::ParticleState& s = state();
+  const Grid& g = dem_.grid;
+  const auto& gt = g.geoTransform;
+  std::vector<float> out;
+  out.reserve(3 * s.size());
+  for (std::size_t q = 0; q < s.size(); ++q) {
+    if (!std::isfinite(s.x[q])) continue;  // removed in the last sub-step
+    const double u = s.x[q] / g.dx, v = s.y[q] / g.dx;  // column, row coordinates
+    const int i = std::min(std::max(static_cast<int>(u), 0), g.nx - 1), j = std::min(std::max(static_cast<int>(v), 0), g.ny - 1);
+    out.push_back(static_cast<float>(gt[0] + u * gt[1] + v * gt[2]));
+    out.push_back(static_cast<float>(gt[3] + u * gt[4] + v * gt[5]));
+    out.push_back(static_cast<float>(dem_.values[g.index(i, j)] + s.H[q]));
+  }
+  return out;
+}
+
+std::vector<float> ParticleRun::attribute(const std::string& name) const {
+  const particles::ParticleState& s = state();
+  std::vector<float> out;
+  out.reserve(s.size());
+  for (std::size_t q = 0; q < s.size(); ++q) {
+    if (!std::isfinite(s.x[q])) continue;
+    double v = 0;
+    if (name == "velocity") {
+      v = std::hypot(s.vx[q], s.vy[q]);
+    } else if (name == "stress invariant") {
+      // sqrt(J2) of the in-plane elastic stress with its trace part removed (2D deviator).
+      const double d = 0.5 * (s.sxx[q] - s.syy[q]);
+      v = std::sqrt(d * d + s.sxy[q] * s.sxy[q]);
+    } else if (name == "cohesion fraction") {
+      v = s.cohesion0[q] > 0 ? s.cohesion[q] / s.cohesion0[q] : 1.0;
+    } else if (name == "thickness") {
+      v = s.H[q];
+    } else {
+      return {};
+    }
+    out.push_back(static_cast<float>(v));
+  }
+  return out;
+}
+
+}  // namespace talus::sim

@@ -1,0 +1,56 @@
+// The particles of a hybrid-mode run inside the simulation loop (spec §7): the particle solver,
+// stepped inside each grid step (multi-rate sub-steps), its health check, mass bookkeeping and
+// diagnostics columns, and its view for the desktop application (ParticleView).
+#pragma once
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "compute/Context.hpp"
+#include "core/Raster.hpp"
+#include "particles/ParticleSolver.hpp"
+#include "sim/ParticleScene.hpp"
+#include "sim/ParticleView.hpp"
+
+namespace talus::sim {
+
+class ParticleRun : public ParticleView {
+ public:
+  ParticleRun(compute::Context& ctx, const Raster& dem, const ParticleScene& scene);
+
+  /// The largest grid step the loop should take so that progress and outputs stay fine-grained:
+  /// 200 particle sub-steps (infinite without particles).
+  double maxStep();
+  /// Advances the particles by dt. Returns an empty string, or what went wrong (non-finite or
+  /// absurd speeds) with the time.
+  std::string step(double dt, double time);
+
+  double initialMass() const { return initialMass_; }
+  double mass() const { return solver_->diagnostics().mass; }
+  double cumulativeOutflow() const { return outflow_; }
+  /// (mass + outflow - initial) / initial.
+  double balanceError() const;
+  /// Columns for diagnostics.csv: particles, mass [kg], outflow of the step [kg], kinetic [J].
+  static const char* csvHeader() { return "particles,particle_mass_kg,particle_outflow_kg,particle_kinetic_J"; }
+  std::string csvRow() const;
+  /// Writes the particles as a GeoPackage point layer (docs/outputs.md, "Particle layers").
+  void writeLayer(const std::string& path) const;
+  particles::ParticleSolver& solver() { return *solver_; }
+
+  // ParticleView
+  std::size_t count() const override;
+  std::vector<ParticleAttributeInfo> attributes() const override;
+  std::vector<float> positions() const override;
+  std::vector<float> attribute(const std::string& name) const override;
+
+ private:
+  const Raster& dem_;
+  std::unique_ptr<particles::ParticleSolver> solver_;
+  double initialMass_ = 0, outflow_ = 0;
+  // Host copy for viewers, refreshed lazily once per step.
+  mutable particles::ParticleState cache_;
+  mutable bool cacheValid_ = false;
+  const particles::ParticleState& state() const;
+};
+
+}  // namespace talus::sim

@@ -1,0 +1,43 @@
+#include "sim/ParticleScene.hpp"
+
+namespace talus::sim {
+
+void splitStructured(const Grid& grid, InitialMaterial& m, ParticleScene& p) {
+  const std::size_t n = grid.cells();
+  particles::SeedInput in;
+  in.mask = m.mask;
+  in.bed = m.bed;
+  in.thickness.assign(n, 0.0);
+  in.density.assign(n, 0.0);
+  for (std::size_t k = 0; k < n; ++k) {
+    if (!m.mask[k]) continue;
+    const double s = m.structured[k] * m.hs[k], f = m.confined[k] * m.hf[k];
+    const double H = s + f;
+    if (!(H > 0)) continue;
+    in.thickness[k] = H;
+    in.density[k] = (s * m.rhoS[k] + f * m.rhoF) / H;
+    m.hs[k] -= s;
+    m.hf[k] -= f;
+  }
+  p.seeded = particles::seedParticles(grid, in, p.spacing);
+  const std::size_t np = p.seeded.size();
+  p.material.density.resize(np);
+  p.material.phi.resize(np);
+  p.material.delta.resize(np);
+  p.material.cohesion.resize(np);
+  p.material.structured.resize(np);
+  p.material.confined.resize(np);
+  for (std::size_t q = 0; q < np; ++q) {
+    const std::size_t k = p.seeded.cell[q];
+    p.material.density[q] = in.density[k];
+    p.material.phi[q] = m.phi[k];
+    p.material.delta[q] = m.delta[k];
+    p.material.cohesion[q] = m.cohesion[k];
+    p.material.structured[q] = m.structured[k];
+    p.material.confined[q] = m.confined[k];
+  }
+  p.terrain.mask = m.mask;
+  p.terrain.bed = m.bed;
+}
+
+}  // namespace talus::sim
