@@ -354,6 +354,9 @@ TEST_P(NeighbourGridTest, RejectsInvalidArguments) {
   EXPECT_THROW(grid.gather(x, x), ComputeError);
   compute::RealBuffer small(ctx(), 5);
   EXPECT_THROW(grid.gather(x, small), ComputeError);
+  // Drain the queue: PoCL compiles kernels lazily on its worker threads, and a launch still pending
+  // when the process exits gets compiled after LLVM's static destructors ran (a crash under ASan).
+  ctx().finish();
 }
 
 TEST(NeighbourGridCellSize, MarginCoversRoundingAndIsSmall) {

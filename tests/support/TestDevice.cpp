@@ -1,6 +1,8 @@
 // The shared test device and contexts (see TestDevice.hpp).
 #include "support/TestDevice.hpp"
 
+#include <gtest/gtest.h>
+
 #include <cstdio>
 #include <string>
 
@@ -18,6 +20,22 @@ namespace {
   throw ComputeError(text);
 }
 
+// The test contexts (float, double), created on first use and intentionally never deleted: OpenCL
+// objects must not be released during static destruction.
+compute::Context* contexts[2] = {nullptr, nullptr};
+
+/// Drains both contexts' queues after the last test. PoCL compiles kernels lazily on its worker
+/// threads; a launch still queued when main() returns would be compiled after LLVM's static
+/// destructors ran (a crash in the sanitizer build, after every test had passed).
+class DrainQueues : public ::testing::Environment {
+ public:
+  void TearDown() override {
+    for (compute::Context* c : contexts)
+      if (c) c->finish();
+  }
+};
+[[maybe_unused]] const ::testing::Environment* const kDrain = ::testing::AddGlobalTestEnvironment(new DrainQueues);
+
 }  // namespace
 
 const compute::DeviceInfo& testDevice() {
@@ -34,8 +52,6 @@ const compute::DeviceInfo& testDevice() {
 }
 
 compute::Context& testContext(compute::Precision precision) {
-  // Intentionally never deleted: OpenCL objects must not be released during static destruction.
-  static compute::Context* contexts[2] = {nullptr, nullptr};
   compute::Context*& slot = contexts[precision == compute::Precision::Double ? 1 : 0];
   if (!slot) {
     const compute::DeviceInfo& device = testDevice();
