@@ -116,6 +116,30 @@ ParticleSolver::ParticleSolver(compute::Context& ctx, const Grid& grid, const Pa
   // see all their neighbours; particles leave the raster through the integrate kernel.
   const double r = 2 * h_;
   neighbours_ = std::make_unique<NeighbourGrid>(ctx, DomainBox{-r, -r, grid.nx * grid.dx + r, grid.ny * grid.dx + r}, r);
+  transfer_ = std::make_unique<ParticleGridTransfer>(ctx, grid);
+}
+
+ParticleGridFields ParticleSolver::gridFields() {
+  const std::size_t cells = grid_.cells();
+  ParticleGridFields f;
+  if (count_ == 0) {
+    f.thickness.assign(cells, 0.0);
+    f.cohesionFraction.assign(cells, -1.0);
+    return f;
+  }
+  neighbours_->build(x_, y_, count_);
+  reorderAll();
+  compute::RealBuffer h(ctx_, cells, "particle thickness on the grid"), mass(ctx_, cells, "particle mass on the grid");
+  compute::RealBuffer px(ctx_, cells, "particle momentum x"), py(ctx_, cells, "particle momentum y");
+  transfer_->confinedToGrid(*neighbours_, x_, y_, V_, m_, vx_, vy_, h, mass, px, py);
+  compute::RealBuffer c(ctx_, cells, "mean cohesion"), c0(ctx_, cells, "mean initial cohesion");
+  transfer_->fieldToGrid(*neighbours_, x_, y_, m_, coh_, FieldTransfer::WeightedMean, c);
+  transfer_->fieldToGrid(*neighbours_, x_, y_, m_, coh0_, FieldTransfer::WeightedMean, c0);
+  f.thickness = h.download();
+  const std::vector<double> cm = c.download(), c0m = c0.download();
+  f.cohesionFraction.resize(cells);
+  for (std::size_t k = 0; k < cells; ++k) f.cohesionFraction[k] = c0m[k] > 0 ? cm[k] / c0m[k] : -1.0;
+  return f;
 }
 
 void ParticleSolver::setParticles(const SeededParticles& seeded, const ParticleMaterial& material) {

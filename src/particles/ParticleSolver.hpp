@@ -16,6 +16,7 @@
 #include "compute/Reducer.hpp"
 #include "core/Grid.hpp"
 #include "particles/NeighbourGrid.hpp"
+#include "particles/ParticleGridTransfer.hpp"
 #include "particles/ParticleSeeding.hpp"
 #include "particles/ParticleSettings.hpp"
 
@@ -47,6 +48,12 @@ struct ParticleState {
   std::size_t size() const { return x.size(); }
 };
 
+/// The particles seen on the terrain grid (P2G with cubic B-splines, spec §6), row-major.
+struct ParticleGridFields {
+  std::vector<double> thickness;         ///< confined-phase thickness H_c [m]
+  std::vector<double> cohesionFraction;  ///< sum w m c / sum w m c0 (-1 where no particle with c0 > 0 reaches)
+};
+
 struct ParticleDiagnostics {
   std::size_t count = 0;       ///< live particles
   double mass = 0;             ///< [kg]
@@ -73,6 +80,8 @@ class ParticleSolver {
 
   const ParticleDiagnostics& diagnostics() const { return diag_; }
   ParticleState state() const;
+  /// Transfers the particles to the terrain grid (re-sorts them first; results are unchanged by it).
+  ParticleGridFields gridFields();
   std::size_t count() const { return count_; }
   /// g_n per terrain cell [m/s^2] (host copy of what the kernels use).
   const std::vector<double>& gn() const { return gnHost_; }
@@ -93,6 +102,7 @@ class ParticleSolver {
   std::size_t count_ = 0, capacity_ = 0;
   ParticleDiagnostics diag_;
   std::unique_ptr<NeighbourGrid> neighbours_;
+  std::unique_ptr<ParticleGridTransfer> transfer_;
   compute::Reducer reducer_;
   compute::RawBuffer params_;
   compute::Buffer<uint8_t> mask_;

@@ -35,6 +35,8 @@ class ParticleRun : public ParticleView {
   std::string csvRow() const;
   /// Writes the particles as a GeoPackage point layer (docs/outputs.md, "Particle layers").
   void writeLayer(const std::string& path) const;
+  /// The particles on the grid: confined thickness and cohesion fraction (for the final maps).
+  particles::ParticleGridFields gridFields() { return solver_->gridFields(); }
   particles::ParticleSolver& solver() { return *solver_; }
 
   // ParticleView

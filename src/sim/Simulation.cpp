@@ -249,7 +249,15 @@ void Simulation::writeFinal(const RunSummary& s, Ending ending) {
       out_->writeMap("deposit", deposit);
     }
   }
-  if (particles_) particles_->writeLayer(out_->path("particles_final.gpkg"));
+  if (particles_) {
+    particles_->writeLayer(out_->path("particles_final.gpkg"));
+    if (!failed) {
+      const particles::ParticleGridFields pf = particles_->gridFields();
+      const double none = -1.0;
+      out_->writeMap("hcfinal", pf.thickness);
+      out_->writeMap("cfracfinal", pf.cohesionFraction, &none);
+    }
+  }
   out_->writeText("summary.json", summaryJson(s, ending));
 }
 

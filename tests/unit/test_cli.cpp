@@ -230,6 +230,17 @@ TEST_F(Cli, HybridRunWritesParticleLayers) {
     EXPECT_EQ((*speed)[q], 0.0) << q;
     EXPECT_EQ((*frac)[q], 1.0) << q;
   }
+  // The particles on the grid (P2G, weights a partition of unity folded at the raster edge): the
+  // confined volume 320 cells x 2 m + 30 cells x 0.5 m of confined water, times 4 m^2 = 2620 m^3,
+  // to float round-off (1e-5); intact bonds everywhere.
+  const Raster hc = talus::io::readRaster((dir_ / "out/hcfinal.tif").string());
+  const Raster cf = talus::io::readRaster((dir_ / "out/cfracfinal.tif").string());
+  double volume = 0;
+  for (std::size_t k = 0; k < hc.values.size(); ++k) {
+    volume += hc.values[k] * 4.0;
+    EXPECT_NEAR(cf.values[k], 1.0, 1e-6) << k;
+  }
+  EXPECT_NEAR(volume, 2620.0, 1e-5 * 2620.0);
 }
 
 TEST_F(Cli, HybridRunRejectsImpossibleShearModulus) {
