@@ -1,0 +1,95 @@
+// Cohesionless granular dam break in the particle mode against Mangeney et al. (2000) (spec §10):
+// theta = 35 deg, delta = 22 deg, K = 1, H0 = 1 m reservoir from x = 0 to the dam at x0 = 20 m, t = 3 s,
+// the solution of support/GranularAnalytic.hpp (cos^2 depth pressure, as the particles' p_zz uses g_n).
+// Particles have no side walls, so the strip is 30 m wide and only its middle 6 m are compared: a
+// lateral rarefaction from each free side travels at most c0 t + (front acceleration 0 across) =
+// 7.7 m in 3 s, leaving the middle 15 +- 7 m untouched. The material is a frictionless-inside,
+// cohesionless solid (phi = 1 deg, c = 0): the Drucker-Prager return removes any deviator, so the
+// stress is the Bell-Rankine pressure K rho g_n H / 2 and the particles solve Savage-Hutter with
+// K = 1, the grid mode's equations. Thickness profile: particle volumes in the middle band binned
+// into 1 m columns, against exact column averages, over the window [17, 50] m where the solution
+// holds (test_granular.cpp explains the window). Double precision.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include "particles/ParticleSeeding.hpp"
+#include "particles/ParticleSolver.hpp"
+#include "support/GranularAnalytic.hpp"
+#include "support/TestDevice.hpp"
+
+using namespace talus;
+using namespace talus::particles;
+
+namespace {
+constexpr double kDeg = 3.14159265358979323846 / 180.0;
+}
+
+TEST(ParticleDamBreak, MatchesMangeneyInTheMiddleOfAWideStrip) {
+  const double theta = 35 * kDeg, delta = 22 * kDeg, H0 = 1.0, x0 = 20.0, T = 3.0, dx = 1.0;
+  const int nx = 50, ny = 30;
+  const Grid g = Grid::make(nx, ny, dx);
+  ParticleTerrain terrain;
+  terrain.mask.assign(g.cells(), 1);
+  terrain.bed.assign(g.cells(), 0.0);
+  SeedInput in;
+  in.mask = terrain.mask;
+  in.thickness.assign(g.cells(), 0.0);
+  in.density.assign(g.cells(), 2000.0);
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      terrain.bed[g.index(i, j)] = -std::tan(theta) * (i + 0.5) * dx;
+      if ((i + 1) * dx <= x0) in.thickness[g.index(i, j)] = H0;
+    }
+  in.bed = terrain.bed;
+  const SeededParticles seeded = seedParticles(g, in, SeedSpacing{0, 4});
+  ParticleMaterial mat;
+  mat.density = {2000.0};
+  mat.phi = {1 * kDeg};
+  mat.delta = {delta};
+  mat.cohesion = {0.0};
+  ParticleSettings ps;
+  ps.youngModulus = 1e6;
+  ps.earthPressure = ParticleEarthPressure::Constant;
+  ps.kConst = 1.0;
+  ParticleSolver solver(test::testContext(compute::Precision::Double), g, terrain, ps);
+  solver.setParticles(seeded, mat);
+  for (int k = 0; k < 30; ++k) {
+    solver.step(T / 30);
+    std::printf("step %d: %d sub-steps, max speed %g, count %zu\n", k, solver.diagnostics().subSteps, solver.diagnostics().maxSpeed, solver.diagnostics().count);
+
+  }
+  const ParticleState s = solver.state();
+  const double yc = 0.5 * ny * dx, band = 3.0;
+  std::vector<double> column(nx, 0.0);
+  for (std::size_t q = 0; q < s.size(); ++q) {
+    if (std::fabs(s.y[q] - yc) > band || !(s.x[q] >= 0)) continue;
+    const int i = static_cast<int>(s.x[q] / dx);
+    if (i < nx) column[i] += s.mass[q] / 2000.0;  // volume
+  }
+  const analytic::MangeneyDamBreak exact = analytic::mangeneyFromSlope(H0, theta, delta, 1.0, false, x0);
+  double l1 = 0, mass = 0;
+  for (int i = 17; i < nx; ++i) {
+    const double h = column[i] / (2 * band * dx);
+    const double hbar = exact.integralH(i * dx, (i + 1) * dx, T) / dx;
+    l1 += std::fabs(h - hbar) * dx;
+    mass += hbar * dx;
+  }
+  std::printf("particle dam break: %zu particles, L1(h) over [17, 50] m = %.4f m^2 (%.2f %% of the exact %.3f m^2); "
+              "front %.2f m (exact %.2f m)\n",
+              s.size(), l1, 100 * l1 / mass, mass, [&] {
+                double f = 0;
+                for (std::size_t q = 0; q < s.size(); ++q)
+                  if (std::fabs(s.y[q] - yc) <= band) f = std::max(f, s.x[q]);
+                return f;
+              }(), exact.front(T));
+  // Measured: L1 = 11.7 % of the mass in the window, the front 2.8 m (less than 2h + one particle
+  // spacing... the kernel support) behind the exact one; the grid mode gives 2.1 % at dx = 0.5 m
+  // (test_granular.cpp). SPH with 2 x 2 particles per cell smooths the thin front over the support
+  // 2h = 2 m, where the exact h ~ (x_f - x)^2 is tiny: most of the error sits there. Tolerance
+  // 15 % of the mass: a wrong pressure (K off by 2) or friction (tan(delta) off by 20 %) moves the
+  // fan by more than that.
+  EXPECT_LT(l1, 0.15 * mass);
+}
