@@ -56,11 +56,7 @@ TEST(ParticleDamBreak, MatchesMangeneyInTheMiddleOfAWideStrip) {
   ps.kConst = 1.0;
   ParticleSolver solver(test::testContext(compute::Precision::Double), g, terrain, ps);
   solver.setParticles(seeded, mat);
-  for (int k = 0; k < 30; ++k) {
-    solver.step(T / 30);
-    std::printf("step %d: %d sub-steps, max speed %g, count %zu\n", k, solver.diagnostics().subSteps, solver.diagnostics().maxSpeed, solver.diagnostics().count);
-
-  }
+  for (int k = 0; k < 30; ++k) solver.step(T / 30);
   const ParticleState s = solver.state();
   const double yc = 0.5 * ny * dx, band = 3.0;
   std::vector<double> column(nx, 0.0);
@@ -85,8 +81,7 @@ TEST(ParticleDamBreak, MatchesMangeneyInTheMiddleOfAWideStrip) {
                   if (std::fabs(s.y[q] - yc) <= band) f = std::max(f, s.x[q]);
                 return f;
               }(), exact.front(T));
-  // Measured: L1 = 11.7 % of the mass in the window, the front 2.8 m (less than 2h + one particle
-  // spacing... the kernel support) behind the exact one; the grid mode gives 2.1 % at dx = 0.5 m
+  // Measured: L1 = 11.7 % of the mass in the window, the front 2.8 m (about the kernel support 2h) behind the exact one; the grid mode gives 2.1 % at dx = 0.5 m
   // (test_granular.cpp). SPH with 2 x 2 particles per cell smooths the thin front over the support
   // 2h = 2 m, where the exact h ~ (x_f - x)^2 is tiny: most of the error sits there. Tolerance
   // 15 % of the mass: a wrong pressure (K off by 2) or friction (tan(delta) off by 20 %) moves the
