@@ -27,7 +27,8 @@ typedef struct {
   real eps_crit;          // critical strain epsilon_c of the cohesion degradation (P.26)
   real k_const;           // constant earth-pressure coefficient
   real pore_b;            // basal pore-pressure factor B (P.39)
-  real pad0, pad1;
+  real rho_f;             // density of the fluid released from broken bonds [kg/m^3]
+  real pad1;
 } ParticleParams;
 
 /// Bilinear interpolation of a cell-centred terrain field at (x, y); the four cells are clamped to

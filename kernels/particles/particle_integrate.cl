@@ -5,6 +5,11 @@
 // nodata cell is removed: its mass goes to `out_mass` (tallied by the host as outflow), its
 // position becomes NaN (it sorts behind every live particle at the next neighbour build) and its
 // mass zero.
+// Water release (OpenLISEM Hazard P.27-P.28): the confined fluid follows the intact bonds,
+// V_f = V_f0 c / c0; what the particle loses, dV = V_f - V_f0 c / c0 >= 0 (c never rises), leaves
+// its volume and mass (rho_f dV) and is added to `released`, which the host moves to the grid's free
+// fluid (with the particle's momentum) at the end of the grid step. A removed particle takes its
+// pending released fluid out with it (counted in its outflow mass).
 #include "particles/particle_common.cl"
 
 __kernel void particle_integrate(__constant const ParticleParams* p, __global const uchar* mask,
@@ -12,11 +17,23 @@ __kernel void particle_integrate(__constant const ParticleParams* p, __global co
                                  __global real* x, __global real* y, __global real* vx, __global real* vy,
                                  __global real* m, __global const real* delta, __global const real* ax,
                                  __global const real* ay, __global real* A, __global const real* divergence,
-                                 __global real* out_mass, const real dt) {
+                                 __global real* V, __global real* rho, __global real* Vf,
+                                 __global const real* Vf0, __global const real* coh, __global const real* coh0,
+                                 __global real* released, __global real* out_mass, const real dt) {
   const int i = get_global_id(0);
   if (i >= p->count) return;
   out_mass[i] = 0;
   if (!(m[i] > (real)0)) return;
+  if (coh0[i] > (real)0 && Vf[i] > (real)0) {
+    const real dV = fmax((real)0, Vf[i] - Vf0[i] * coh[i] / coh0[i]);
+    if (dV > (real)0) {
+      Vf[i] -= dV;
+      V[i] -= dV;
+      m[i] -= p->rho_f * dV;
+      rho[i] = m[i] / V[i];
+      released[i] += dV;
+    }
+  }
   const real xi = x[i], yi = y[i];
   const real g = terrain_sample(p, gn, xi, yi);
   const real bx = terrain_sample(p, grad_x, xi, yi), by = terrain_sample(p, grad_y, xi, yi);
@@ -33,7 +50,8 @@ __kernel void particle_integrate(__constant const ParticleParams* p, __global co
   const real xn = xi + dt * ux, yn = yi + dt * uy;
   const int cell = terrain_cell(p, xn, yn);
   if (cell < 0 || !mask[cell]) {
-    out_mass[i] = m[i];
+    out_mass[i] = m[i] + p->rho_f * released[i];
+    released[i] = 0;
     m[i] = 0;
     x[i] = y[i] = NAN;
     vx[i] = vy[i] = 0;
@@ -46,13 +64,16 @@ __kernel void particle_integrate(__constant const ParticleParams* p, __global co
   y[i] = yn;
 }
 
-/// Per-particle rows for the diagnostics (rows of `stride` entries): |v|, m |v|^2 / 2, m.
+/// Per-particle rows for the diagnostics (rows of `stride` entries): |v|, m |v|^2 / 2, m, V_f, released.
 __kernel void particle_totals(__constant const ParticleParams* p, __global const real* vx, __global const real* vy,
-                              __global const real* m, __global real* rows, const int stride) {
+                              __global const real* m, __global const real* Vf, __global const real* released,
+                              __global real* rows, const int stride) {
   const int i = get_global_id(0);
   if (i >= p->count) return;
   const real v2 = vx[i] * vx[i] + vy[i] * vy[i];
   rows[i] = sqrt(v2);
   rows[stride + i] = (real)0.5 * m[i] * v2;
   rows[2 * stride + i] = m[i];
+  rows[3 * stride + i] = Vf[i];
+  rows[4 * stride + i] = released[i];
 }

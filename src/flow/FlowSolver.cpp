@@ -139,6 +139,18 @@ void FlowSolver::setInput(const FlowInput& in, double startTime) {
   computeDiagnostics();
 }
 
+void FlowSolver::addFluid(
+    const std::function<void(compute::RealBuffer& h, compute::RealBuffer& qx, compute::RealBuffer& qy)>& add) {
+  add(h_, qx_, qy_);
+  std::vector<int> all(static_cast<std::size_t>(tilesX_) * tilesY_);
+  std::iota(all.begin(), all.end(), 0);
+  tileList_.write(all);
+  tileActive_.fill(1);
+  tileWet_.fill(0);
+  activeTiles_ = tileCount();
+  computeDiagnostics();
+}
+
 double FlowSolver::stableDt() const {
   if (std::isnan(diag_.maxSpeed)) return std::numeric_limits<double>::quiet_NaN();
   if (diag_.maxSpeed <= 0) return std::numeric_limits<double>::infinity();

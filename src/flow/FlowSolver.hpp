@@ -5,6 +5,7 @@
 //   friction (semi-implicit Manning) -> maxima -> diagnostics and next active tiles.
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "compute/Buffer.hpp"
@@ -89,6 +90,11 @@ class FlowSolver {
   /// continues bitwise as if the run had not stopped.
   std::vector<char> saveState() const;
   void restoreState(const std::vector<char>& bytes, double time);
+  /// Adds fluid from outside the grid (water released by particles, spec §5 P.27-P.28): `add`
+  /// receives the device fields h, qx, qy and adds to them; then the diagnostics and the active tiles
+  /// are recomputed over every tile (the new fluid may lie in tiles that were dry). The outflow of
+  /// the last step stays what it was.
+  void addFluid(const std::function<void(compute::RealBuffer& h, compute::RealBuffer& qx, compute::RealBuffer& qy)>& add);
   /// Slope-corrected gravities as uploaded (for tests).
   std::vector<double> gp() const { return gp_.download(); }
 

@@ -11,7 +11,7 @@ struct ParticleParamsT {
   int32_t count;
   int32_t earthPressure;  // 0 Savage-Hutter active/passive, 1 constant
   Real dx, h, shearModulus, bulkModulus, soundSpeed, alphaPi, betaPi, epsArt, nArt, wSpacing, dilatancy, epsCrit,
-      kConst, poreB, pad0, pad1;
+      kConst, poreB, rhoF, pad1;
 };
 
 // The OpenCL C struct has the same member order; both layouts must match byte for byte.

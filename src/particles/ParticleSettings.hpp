@@ -17,6 +17,7 @@ struct ParticleSettings {
   double dilatancy = 0;          ///< psi [rad]
   double epsCrit = 0.1;          ///< critical strain of the cohesion degradation (P.26)
   double poreB = 1.0;            ///< basal pore-pressure factor B (P.39)
+  double fluidDensity = 1000.0;  ///< rho_f of the confined fluid released from broken bonds [kg/m^3]
   ParticleEarthPressure earthPressure = ParticleEarthPressure::Constant;
   double kConst = 1.0;
 

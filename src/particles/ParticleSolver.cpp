@@ -59,6 +59,7 @@ void fillParams(compute::RawBuffer& buf, const Grid& g, const ParticleSettings& 
   p.epsCrit = static_cast<Real>(s.epsCrit);
   p.kConst = static_cast<Real>(s.kConst);
   p.poreB = static_cast<Real>(s.poreB);
+  p.rhoF = static_cast<Real>(s.fluidDensity);
   buf.writeBytes(&p, sizeof p);
 }
 
@@ -119,6 +120,17 @@ ParticleSolver::ParticleSolver(compute::Context& ctx, const Grid& grid, const Pa
   transfer_ = std::make_unique<ParticleGridTransfer>(ctx, grid);
 }
 
+double ParticleSolver::releaseToGrid(compute::RealBuffer& h, compute::RealBuffer& qx, compute::RealBuffer& qy) {
+  const double volume = diag_.pendingRelease;
+  if (count_ == 0 || !(volume > 0)) return 0.0;
+  neighbours_->build(x_, y_, count_);
+  reorderAll();
+  transfer_->releasedToGrid(*neighbours_, x_, y_, released_, vx_, vy_, h, qx, qy, true);
+  released_.fill(0.0);
+  diag_.pendingRelease = 0;
+  return volume;
+}
+
 ParticleGridFields ParticleSolver::gridFields() {
   const std::size_t cells = grid_.cells();
   ParticleGridFields f;
@@ -153,6 +165,7 @@ void ParticleSolver::setParticles(const SeededParticles& seeded, const ParticleM
   auto make = [&](compute::RealBuffer& b, const char* label) { b = compute::RealBuffer(ctx_, capacity_, label); };
   make(A_, "particle area"), make(V_, "particle volume"), make(div_, "particle divergence");
   make(fsc0_, "particle initial structured fraction"), make(ffc0_, "particle initial confined fraction");
+  make(Vf_, "particle confined fluid"), make(Vf0_, "particle initial confined fluid"), make(released_, "particle released fluid");
   make(x_, "particle x"), make(y_, "particle y"), make(vx_, "particle vx"), make(vy_, "particle vy");
   make(m_, "particle mass"), make(rho_, "particle density"), make(phi_, "particle phi"), make(delta_, "particle delta");
   make(coh_, "particle cohesion"), make(coh0_, "particle initial cohesion"), make(sxx_, "particle sxx");
@@ -160,7 +173,7 @@ void ParticleSolver::setParticles(const SeededParticles& seeded, const ParticleM
   make(rhoA_, "particle areal density"), make(H_, "particle thickness"), make(Nxx_, "particle Nxx");
   make(Nyy_, "particle Nyy"), make(Nxy_, "particle Nxy"), make(ax_, "particle ax"), make(ay_, "particle ay");
   make(outMass_, "particle outflow");
-  speed_ = compute::RealBuffer(ctx_, 3 * capacity_, "particle totals");
+  speed_ = compute::RealBuffer(ctx_, 5 * capacity_, "particle totals");
   Minv_ = compute::RealBuffer(ctx_, 3 * capacity_, "particle gradient correction");
   if (n == 0) {
     writeParams();
@@ -171,6 +184,12 @@ void ParticleSolver::setParticles(const SeededParticles& seeded, const ParticleM
   A_.upload(seeded.area), V_.upload(seeded.volume);
   fsc0_.upload(material.structured.empty() ? std::vector<double>(n, 1.0) : perParticle(material.structured, n, "structured"));
   ffc0_.upload(material.confined.empty() ? std::vector<double>(n, 1.0) : perParticle(material.confined, n, "confined"));
+  const std::vector<double> vf = material.fluidVolume.empty() ? zero : perParticle(material.fluidVolume, n, "fluid volume");
+  for (std::size_t q = 0; q < n; ++q)
+    if (!(vf[q] >= 0 && vf[q] <= seeded.volume[q]))
+      throw InputError("particle " + std::to_string(q) + ": confined fluid volume " + std::to_string(vf[q]) +
+                       " m^3 outside [0, the particle's volume " + std::to_string(seeded.volume[q]) + "]");
+  Vf_.upload(vf), Vf0_.upload(vf), released_.upload(zero);
   x_.upload(seeded.x), y_.upload(seeded.y), vx_.upload(zero), vy_.upload(zero), m_.upload(seeded.mass);
   rho_.upload(rho), phi_.upload(phi), delta_.upload(delta), coh_.upload(coh), coh0_.upload(coh);
   sxx_.upload(zero), syy_.upload(zero), sxy_.upload(zero), plastic_.upload(zero);
@@ -230,7 +249,7 @@ void ParticleSolver::step(double dt) {
 
 void ParticleSolver::reorderAll() {
   for (compute::RealBuffer* f : {&x_, &y_, &vx_, &vy_, &m_, &rho_, &phi_, &delta_, &coh_, &coh0_, &sxx_, &syy_, &sxy_,
-                                 &plastic_, &A_, &V_, &fsc0_, &ffc0_})
+                                 &plastic_, &A_, &V_, &fsc0_, &ffc0_, &Vf_, &Vf0_, &released_})
     neighbours_->reorder(*f);
 }
 
@@ -253,8 +272,8 @@ void ParticleSolver::subStep(double ds) {
   forces_.bind(params_, ng.params(), ng.cellStart(), ng.cellEnd(), x_, y_, vx_, vy_, m_, rhoA_, Nxx_, Nyy_, Nxy_, Minv_,
                ax_, ay_);
   forces_.launch(global, {0, 0}, "particle_forces");
-  integrate_.bind(params_, mask_, gradX_, gradY_, gn_, x_, y_, vx_, vy_, m_, delta_, ax_, ay_, A_, div_, outMass_,
-                  compute::RealArg{ds});
+  integrate_.bind(params_, mask_, gradX_, gradY_, gn_, x_, y_, vx_, vy_, m_, delta_, ax_, ay_, A_, div_, V_, rho_, Vf_,
+                  Vf0_, coh_, coh0_, released_, outMass_, compute::RealArg{ds});
   integrate_.launch(global, {0, 0}, "particle_integrate");
   diag_.outflowMass += reducer_.sum(outMass_, count_);
 }
@@ -262,16 +281,19 @@ void ParticleSolver::subStep(double ds) {
 void ParticleSolver::updateDiagnostics() {
   diag_.count = count_;
   if (count_ == 0) {
-    diag_.mass = diag_.kinetic = diag_.maxSpeed = 0;
+    diag_.mass = diag_.kinetic = diag_.maxSpeed = diag_.confinedFluid = diag_.pendingRelease = 0;
     return;
   }
-  speedKernel_.bind(params_, vx_, vy_, m_, speed_, static_cast<int>(capacity_));
+  speedKernel_.bind(params_, vx_, vy_, m_, Vf_, released_, speed_, static_cast<int>(capacity_));
   speedKernel_.launch(compute::Range{count_}, {0, 0}, "particle_totals");
+  using compute::ReduceOp;
   const std::vector<double> r = reducer_.reduceRows(
-      speed_, count_, {compute::ReduceOp::Max, compute::ReduceOp::Sum, compute::ReduceOp::Sum}, capacity_);
+      speed_, count_, {ReduceOp::Max, ReduceOp::Sum, ReduceOp::Sum, ReduceOp::Sum, ReduceOp::Sum}, capacity_);
   diag_.maxSpeed = r[0];
   diag_.kinetic = r[1];
   diag_.mass = r[2];
+  diag_.confinedFluid = r[3];
+  diag_.pendingRelease = r[4];
 }
 
 ParticleState ParticleSolver::state() const {

@@ -37,6 +37,7 @@ struct ParticleMaterial {
   std::vector<double> cohesion;  ///< initial cohesion c0 [Pa]
   std::vector<double> structured;  ///< initial f_sc (empty: 1)
   std::vector<double> confined;    ///< initial f_fc (empty: 1)
+  std::vector<double> fluidVolume; ///< confined fluid volume V_f0 [m^3] inside the particle's volume (empty: 0)
 };
 
 /// Host copy of the particle state (live particles only, in the solver's current order).
@@ -60,6 +61,8 @@ struct ParticleDiagnostics {
   double outflowMass = 0;      ///< mass removed at the domain edge in the last step [kg]
   double kinetic = 0;          ///< [J]
   double maxSpeed = 0;         ///< [m/s]
+  double confinedFluid = 0;    ///< fluid volume held by the particles [m^3]
+  double pendingRelease = 0;   ///< fluid released from broken bonds, not yet moved to the grid [m^3]
   int subSteps = 0;            ///< sub-steps of the last step
 };
 
@@ -82,6 +85,10 @@ class ParticleSolver {
   ParticleState state() const;
   /// Transfers the particles to the terrain grid (re-sorts them first; results are unchanged by it).
   ParticleGridFields gridFields();
+  /// Moves the fluid released since the last call onto the grid's free fluid: adds its volume to
+  /// `h` (thickness, m) and its momentum (the particles' velocity) to `qx`, `qy` (m^2/s), by P2G with
+  /// the cubic B-spline weights (exact in total). Returns the volume moved [m^3] (0: nothing launched).
+  double releaseToGrid(compute::RealBuffer& h, compute::RealBuffer& qx, compute::RealBuffer& qy);
   std::size_t count() const { return count_; }
   /// g_n per terrain cell [m/s^2] (host copy of what the kernels use).
   const std::vector<double>& gn() const { return gnHost_; }
@@ -109,6 +116,7 @@ class ParticleSolver {
   compute::RealBuffer gradX_, gradY_, gn_;
   // Particle fields (reordered together at every neighbour build).
   compute::RealBuffer x_, y_, vx_, vy_, m_, rho_, phi_, delta_, coh_, coh0_, sxx_, syy_, sxy_, plastic_, A_, V_, fsc0_, ffc0_;
+  compute::RealBuffer Vf_, Vf0_, released_;
   std::vector<double> gnHost_;
   // Per sub-step scratch (not reordered).
   compute::RealBuffer rhoA_, H_, Nxx_, Nyy_, Nxy_, Minv_, div_, ax_, ay_, outMass_, speed_;

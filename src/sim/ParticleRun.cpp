@@ -17,11 +17,17 @@ ParticleRun::ParticleRun(compute::Context& ctx, const Raster& dem, const Particl
 
 double ParticleRun::maxStep() { return 200 * solver_->stableSubStep(); }
 
-std::string ParticleRun::step(double dt, double time) {
+std::string ParticleRun::step(double dt, double time, flow::FlowSolver& flow) {
   solver_->step(dt);
   cacheValid_ = false;
   const particles::ParticleDiagnostics& d = solver_->diagnostics();
   outflow_ += d.outflowMass;
+  releasedLast_ = 0;
+  if (d.pendingRelease > 0)
+    flow.addFluid([&](compute::RealBuffer& h, compute::RealBuffer& qx, compute::RealBuffer& qy) {
+      releasedLast_ = solver_->releaseToGrid(h, qx, qy);
+    });
+  releasedTotal_ += releasedLast_;
   // A particle faster than the elastic wave speed times 10 (or NaN) means the explicit scheme has
   // blown up: no physical flow on a DEM gets there.
   if (!std::isfinite(d.maxSpeed) || !std::isfinite(d.kinetic)) {

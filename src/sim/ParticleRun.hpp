@@ -8,6 +8,7 @@
 
 #include "compute/Context.hpp"
 #include "core/Raster.hpp"
+#include "flow/FlowSolver.hpp"
 #include "particles/ParticleSolver.hpp"
 #include "sim/ParticleScene.hpp"
 #include "sim/ParticleView.hpp"
@@ -21,9 +22,13 @@ class ParticleRun : public ParticleView {
   /// The largest grid step the loop should take so that progress and outputs stay fine-grained:
   /// 200 particle sub-steps (infinite without particles).
   double maxStep();
-  /// Advances the particles by dt. Returns an empty string, or what went wrong (non-finite or
-  /// absurd speeds) with the time.
-  std::string step(double dt, double time);
+  /// Advances the particles by dt and moves the fluid their broken bonds released onto the grid's
+  /// free fluid (`flow`). Returns an empty string, or what went wrong (non-finite speeds) with the time.
+  std::string step(double dt, double time, flow::FlowSolver& flow);
+  /// Fluid volume moved to the grid by the last step [m^3] (a source of the grid's volume balance).
+  double releasedLastStep() const { return releasedLast_; }
+  /// Fluid volume moved to the grid since the start [m^3].
+  double releasedTotal() const { return releasedTotal_; }
 
   double initialMass() const { return initialMass_; }
   double mass() const { return solver_->diagnostics().mass; }
@@ -48,7 +53,7 @@ class ParticleRun : public ParticleView {
  private:
   const Raster& dem_;
   std::unique_ptr<particles::ParticleSolver> solver_;
-  double initialMass_ = 0, outflow_ = 0;
+  double initialMass_ = 0, outflow_ = 0, releasedLast_ = 0, releasedTotal_ = 0;
   // Host copy for viewers, refreshed lazily once per step.
   mutable particles::ParticleState cache_;
   mutable bool cacheValid_ = false;

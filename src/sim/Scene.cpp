@@ -147,6 +147,7 @@ Scene loadScene(const io::RunConfig& cfg) {
     ps.dilatancy = cfg.real("Dilatancy Angle");
     ps.epsCrit = cfg.real("Critical Strain");
     ps.poreB = cfg.real("Pore Pressure Factor");
+    ps.fluidDensity = cfg.real("Fluid Density");
     ps.earthPressure = cfg.choice("Earth Pressure") == "constant" ? particles::ParticleEarthPressure::Constant
                                                                   : particles::ParticleEarthPressure::SavageHutter;
     ps.kConst = cfg.real("Earth Pressure Coefficient");

@@ -160,7 +160,10 @@ Progress Simulation::stepOnce() {
   if (std::fabs(solver_->time() - target) <= 1e-12 * std::max(1.0, std::fabs(target))) solver_->setTime(target);
   ++steps_;
   std::string problem = health_->check(*solver_, dt);
-  if (problem.empty() && particles_) problem = particles_->step(dt, solver_->time());
+  if (problem.empty() && particles_) {
+    problem = particles_->step(dt, solver_->time(), *solver_);
+    initialVolume_ += particles_->releasedLastStep();  // released fluid is a source of the grid's volume
+  }
   if (!problem.empty()) {
     std::ostringstream o;
     o << "simulation unstable at t = " << solver_->time() << " s (step " << steps_ << ", dt = " << dt

@@ -12,6 +12,7 @@
 #include <cstdio>
 
 #include "core/Constants.hpp"
+#include "flow/FlowSolver.hpp"
 #include "particles/ParticleSeeding.hpp"
 #include "particles/ParticleSolver.hpp"
 #include "support/TestDevice.hpp"
@@ -97,4 +98,72 @@ TEST(ParticleCut, ShortColumnStandsTallColumnCollapses) {
   EXPECT_GT(tallCol.spread, 1.0);
   EXPECT_LT(tallCol.minCohesionFraction, 0.5);
   EXPECT_LT(tallCol.massError, 1e-12);  // mass + tallied outflow: a sum of equal masses, round-off only
+}
+
+// Water release (OpenLISEM Hazard P.27-P.28): the tall column of the test above, holding confined
+// water (half of each particle's volume), collapses; where bonds break the water leaves the particles
+// (V_f = V_f0 c / c0) and ParticleSolver::releaseToGrid moves it onto the grid's free fluid
+// (FlowSolver::addFluid), where it flows. Fluid volume: grid water + water still held by the
+// particles + released but not yet moved = the initial confined water, after every grid step, to
+// round-off (double: sums of ~10^3 terms, 1e-12 relative); and mass: particles + rho_f x grid water
+// = the initial mass. Walls and a 30 m domain: nothing leaves.
+TEST(ParticleCut, ReleasedWaterReachesTheGridConserved) {
+  const double dx = 0.5, c = 1e4, phi = 30 * kDeg, rho = 2000.0, rhoF = 1000.0;
+  const double Ka = (1 - std::sin(phi)) / (1 + std::sin(phi));
+  const double H = 2 * 4 * c / (rho * kGravity * std::sqrt(Ka));
+  const Grid g = Grid::make(60, 60, dx);
+  ParticleTerrain terrain;
+  terrain.mask.assign(g.cells(), 1);
+  terrain.bed.assign(g.cells(), 0.0);
+  SeedInput in;
+  in.mask = terrain.mask;
+  in.bed = terrain.bed;
+  in.thickness.assign(g.cells(), 0.0);
+  in.density.assign(g.cells(), rho);
+  for (int j = 26; j < 34; ++j)
+    for (int i = 26; i < 34; ++i) in.thickness[g.index(i, j)] = H;
+  const SeededParticles seeded = seedParticles(g, in, SeedSpacing{0, 4});
+  ParticleMaterial mat;
+  mat.density = {rho};
+  mat.phi = {phi};
+  mat.delta = {phi};
+  mat.cohesion = {c};
+  mat.fluidVolume = seeded.volume;
+  for (double& v : mat.fluidVolume) v *= 0.5;
+  ParticleSettings ps;
+  ps.youngModulus = 1e7;
+  ps.earthPressure = ParticleEarthPressure::Constant;
+  ps.kConst = Ka;
+  ps.fluidDensity = rhoF;
+  compute::Context& ctx = test::testContext(compute::Precision::Double);
+  ParticleSolver particles(ctx, g, terrain, ps);
+  particles.setParticles(seeded, mat);
+  flow::FlowSettings fs;
+  fs.edge = flow::Boundary::Wall;
+  flow::FlowSolver fluid(ctx, g, fs);
+  flow::FlowInput fin;
+  fin.mask = terrain.mask;
+  fin.bed = terrain.bed;
+  fin.manning.assign(g.cells(), 0.0);
+  fin.h.assign(g.cells(), 0.0);
+  fluid.setInput(fin);
+  const double water0 = particles.diagnostics().confinedFluid, mass0 = particles.diagnostics().mass;
+  double worstVolume = 0, worstMass = 0, released = 0;
+  for (int k = 0; k < 20; ++k) {
+    double dt = std::min(0.1, fluid.stableDt());
+    fluid.step(dt);
+    particles.step(dt);
+    fluid.addFluid([&](compute::RealBuffer& h, compute::RealBuffer& qx, compute::RealBuffer& qy) {
+      released += particles.releaseToGrid(h, qx, qy);
+    });
+    const ParticleDiagnostics& d = particles.diagnostics();
+    const double water = fluid.diagnostics().volume + d.confinedFluid + d.pendingRelease;
+    worstVolume = std::max(worstVolume, std::fabs(water - water0) / water0);
+    worstMass = std::max(worstMass, std::fabs(d.mass + rhoF * fluid.diagnostics().volume - mass0) / mass0);
+  }
+  std::printf("water release: %.3f of %.3f m^3 released to the grid; fluid volume balance %.2e, mass balance %.2e\n",
+              released, water0, worstVolume, worstMass);
+  EXPECT_GT(released, 0.1 * water0) << "the collapsing column must release water";
+  EXPECT_LT(worstVolume, 1e-12);
+  EXPECT_LT(worstMass, 1e-12);
 }
