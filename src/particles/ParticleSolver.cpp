@@ -1,6 +1,7 @@
 #include "particles/ParticleSolver.hpp"
 
 #include <algorithm>
+#include <cstring>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -247,10 +248,47 @@ void ParticleSolver::step(double dt) {
   updateDiagnostics();
 }
 
+std::vector<compute::RealBuffer*> ParticleSolver::stateFields() {
+  return {&x_, &y_, &vx_, &vy_, &m_, &rho_, &phi_, &delta_, &coh_, &coh0_, &sxx_, &syy_, &sxy_,
+          &plastic_, &A_, &V_, &fsc0_, &ffc0_, &Vf_, &Vf0_, &released_};
+}
+
 void ParticleSolver::reorderAll() {
-  for (compute::RealBuffer* f : {&x_, &y_, &vx_, &vy_, &m_, &rho_, &phi_, &delta_, &coh_, &coh0_, &sxx_, &syy_, &sxy_,
-                                 &plastic_, &A_, &V_, &fsc0_, &ffc0_, &Vf_, &Vf0_, &released_})
-    neighbours_->reorder(*f);
+  for (compute::RealBuffer* f : stateFields()) neighbours_->reorder(*f);
+}
+
+std::vector<char> ParticleSolver::saveState() const {
+  auto* self = const_cast<ParticleSolver*>(this);  // stateFields() lists members; nothing is changed
+  const uint64_t count = count_;
+  std::vector<char> bytes(sizeof count + sizeof time_);
+  std::memcpy(bytes.data(), &count, sizeof count);
+  std::memcpy(bytes.data() + sizeof count, &time_, sizeof time_);
+  const std::size_t each = count_ * compute::realSize(ctx_.precision());
+  for (const compute::RealBuffer* f : self->stateFields()) {
+    const std::size_t at = bytes.size();
+    bytes.resize(at + each);
+    if (each) f->raw().readBytes(bytes.data() + at, each);
+  }
+  return bytes;
+}
+
+void ParticleSolver::restoreState(const std::vector<char>& bytes) {
+  uint64_t count = 0;
+  const std::vector<compute::RealBuffer*> fields = stateFields();
+  const std::size_t unit = compute::realSize(ctx_.precision());
+  if (bytes.size() >= sizeof count + sizeof time_) std::memcpy(&count, bytes.data(), sizeof count);
+  if (bytes.size() != sizeof count + sizeof time_ + fields.size() * count * unit || count > capacity_)
+    throw InputError("checkpoint: the particle state does not fit this run's particles (" + std::to_string(capacity_) +
+                     " seeded, " + compute::precisionName(ctx_.precision()) + ")");
+  std::memcpy(&time_, bytes.data() + sizeof count, sizeof time_);
+  count_ = count;
+  std::size_t at = sizeof count + sizeof time_;
+  for (compute::RealBuffer* f : fields) {
+    if (count) f->raw().writeBytes(bytes.data() + at, count * unit);
+    at += count * unit;
+  }
+  writeParams();
+  updateDiagnostics();
 }
 
 void ParticleSolver::subStep(double ds) {

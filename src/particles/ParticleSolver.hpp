@@ -83,6 +83,11 @@ class ParticleSolver {
 
   const ParticleDiagnostics& diagnostics() const { return diag_; }
   ParticleState state() const;
+  /// The evolving particle state (every per-particle field of the live particles, raw bytes of the
+  /// run's precision, in the current order) and the time, for checkpoints. restoreState() after
+  /// setParticles() of the same scene continues bitwise as if the run had not stopped.
+  std::vector<char> saveState() const;
+  void restoreState(const std::vector<char>& bytes);
   /// Transfers the particles to the terrain grid (re-sorts them first; results are unchanged by it).
   ParticleGridFields gridFields();
   /// Moves the fluid released since the last call onto the grid's free fluid: adds its volume to
@@ -100,6 +105,7 @@ class ParticleSolver {
   void writeParams();
   void reorderAll();
   void updateDiagnostics();
+  std::vector<compute::RealBuffer*> stateFields();
 
   compute::Context& ctx_;
   Grid grid_;

@@ -11,7 +11,9 @@
 namespace talus::sim {
 namespace {
 
-constexpr char kMagic[8] = {'T', 'A', 'L', 'U', 'S', 'C', 'K', '1'};
+// Version 2 adds the particle state; version 1 files (no particles) still read.
+constexpr char kMagic[8] = {'T', 'A', 'L', 'U', 'S', 'C', 'K', '2'};
+constexpr char kMagicV1[8] = {'T', 'A', 'L', 'U', 'S', 'C', 'K', '1'};
 
 template <class T>
 void put(std::ofstream& o, const T& v) {
@@ -60,6 +62,7 @@ void writeCheckpoint(const std::string& path, const Checkpoint& c) {
     put(o, c.elapsedWall);
     putString(o, c.seriesIndex);
     putString(o, std::string(c.state.begin(), c.state.end()));
+    putString(o, std::string(c.particleState.begin(), c.particleState.end()));
     o.write(kMagic, sizeof kMagic);  // trailer: a complete file ends with the magic again
     o.flush();
     if (!o) {
@@ -80,8 +83,10 @@ Checkpoint readCheckpoint(const std::string& path) {
   Reader r{std::ifstream(path, std::ios::binary), path};
   if (!r.in) throw InputError("no checkpoint '" + path + "' (was the run started with a checkpoint interval?)");
   char magic[8];
-  if (!r.in.read(magic, sizeof magic) || std::memcmp(magic, kMagic, sizeof magic) != 0)
+  if (!r.in.read(magic, sizeof magic) ||
+      (std::memcmp(magic, kMagic, sizeof magic) != 0 && std::memcmp(magic, kMagicV1, sizeof magic) != 0))
     throw InputError("'" + path + "' is not a Talus checkpoint");
+  const bool v1 = std::memcmp(magic, kMagicV1, sizeof magic) == 0;
   Checkpoint c;
   c.precision = r.getString(16);
   c.nx = r.get<int32_t>();
@@ -95,7 +100,11 @@ Checkpoint readCheckpoint(const std::string& path) {
   c.seriesIndex = r.getString(1ull << 30);
   const std::string state = r.getString(1ull << 40);
   c.state.assign(state.begin(), state.end());
-  if (!r.in.read(magic, sizeof magic) || std::memcmp(magic, kMagic, sizeof magic) != 0) r.fail();
+  if (!v1) {
+    const std::string particles = r.getString(1ull << 40);
+    c.particleState.assign(particles.begin(), particles.end());
+  }
+  if (!r.in.read(magic, sizeof magic) || std::memcmp(magic, v1 ? kMagicV1 : kMagic, sizeof magic) != 0) r.fail();
   return c;
 }
 

@@ -17,6 +17,7 @@ struct Checkpoint {
   double elapsedWall = 0;       ///< wall seconds spent before the checkpoint
   std::string seriesIndex;      ///< contents of series/index.csv so far
   std::vector<char> state;      ///< FlowSolver::saveState()
+  std::vector<char> particleState;  ///< ParticleRun::saveState() (empty: a run without particles)
 };
 
 /// Writes `c` to `path` atomically (temporary file in the same folder, then rename).

@@ -2,9 +2,11 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <sstream>
 
+#include "core/Error.hpp"
 #include "io/ParticleLayerIO.hpp"
 
 namespace talus::sim {
@@ -36,6 +38,24 @@ std::string ParticleRun::step(double dt, double time, flow::FlowSolver& flow) {
     return o.str();
   }
   return "";
+}
+
+std::vector<char> ParticleRun::saveState() const {
+  const double book[3] = {initialMass_, outflow_, releasedTotal_};
+  std::vector<char> bytes(sizeof book);
+  std::memcpy(bytes.data(), book, sizeof book);
+  const std::vector<char> s = solver_->saveState();
+  bytes.insert(bytes.end(), s.begin(), s.end());
+  return bytes;
+}
+
+void ParticleRun::restoreState(const std::vector<char>& bytes) {
+  double book[3];
+  if (bytes.size() < sizeof book) throw InputError("checkpoint: the particle state is truncated");
+  std::memcpy(book, bytes.data(), sizeof book);
+  initialMass_ = book[0], outflow_ = book[1], releasedTotal_ = book[2];
+  solver_->restoreState(std::vector<char>(bytes.begin() + sizeof book, bytes.end()));
+  cacheValid_ = false;
 }
 
 double ParticleRun::balanceError() const {

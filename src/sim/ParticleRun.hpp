@@ -43,6 +43,9 @@ class ParticleRun : public ParticleView {
   /// The particles on the grid: confined thickness and cohesion fraction (for the final maps).
   particles::ParticleGridFields gridFields() { return solver_->gridFields(); }
   particles::ParticleSolver& solver() { return *solver_; }
+  /// Particle state and bookkeeping for checkpoints (restoreState after construction from the same scene).
+  std::vector<char> saveState() const;
+  void restoreState(const std::vector<char>& bytes);
 
   // ParticleView
   std::size_t count() const override;

@@ -41,15 +41,21 @@ Simulation::Simulation(const Scene& scene, const io::RunConfig& config, const st
   ctx_ = compute::Context::create(scene.device, compute::parsePrecision(scene.precision));
   solver_ = std::make_unique<flow::FlowSolver>(*ctx_, scene.dem.grid, scene.settings);
   solver_->setInput(scene.flow, scene.startTime);
-  health_ = std::make_unique<HealthCheck>(scene.dem, scene.flow, scene.settings.cfl);
+  if (scene.particles.enabled && !scene.particles.seeded.x.empty()) {
+    // The particles' material counts for the energy bound too: its confined water may be released
+    // onto the grid and fall from where the particles stand.
+    flow::FlowInput bound = scene.flow;
+    const double area = scene.dem.grid.dx * scene.dem.grid.dx;
+    for (std::size_t q = 0; q < scene.particles.seeded.size(); ++q)
+      bound.h[scene.particles.seeded.cell[q]] += scene.particles.seeded.volume[q] / area;
+    health_ = std::make_unique<HealthCheck>(scene.dem, bound, scene.settings.cfl);
+  } else {
+    health_ = std::make_unique<HealthCheck>(scene.dem, scene.flow, scene.settings.cfl);
+  }
   for (uint8_t v : scene.dem.valid) domainCells_ += v;
   initialVolume_ = totalVolume(solver_->diagnostics());
-  if (scene.particles.enabled && !scene.particles.seeded.x.empty()) {
-    if (mode == OutputMode::Resume)
-      throw InputError("run '" + scene.runFile + "': resuming a run with particles (Use Material Point Method=1) "
-                       "is not supported yet; start it again");
+  if (scene.particles.enabled && !scene.particles.seeded.x.empty())
     particles_ = std::make_unique<ParticleRun>(*ctx_, scene.dem, scene.particles);
-  }
   if (mode != OutputMode::Resume) {
     out_->writeText("run.resolved.run", config.echo());
     return;
@@ -63,6 +69,9 @@ Simulation::Simulation(const Scene& scene, const io::RunConfig& config, const st
                      std::to_string(g.nx) + "x" + std::to_string(g.ny) + " in " +
                      compute::precisionName(ctx_->precision()));
   solver_->restoreState(c.state, c.time);
+  if (particles_ && c.particleState.empty())
+    throw InputError("checkpoint '" + path + "' holds no particles, but this run has particles");
+  if (particles_) particles_->restoreState(c.particleState);
   steps_ = c.steps;
   reportIndex_ = c.reportIndex;
   initialVolume_ = c.initialVolume;
@@ -114,6 +123,7 @@ void Simulation::writeCheckpoint(double wallSeconds) {
   c.elapsedWall = wallSeconds;
   c.seriesIndex = seriesIndex_;
   c.state = solver_->saveState();
+  if (particles_) c.particleState = particles_->saveState();
   sim::writeCheckpoint(out_->path("checkpoint.bin"), c);
   ++checkpoints_;
 }
@@ -192,8 +202,7 @@ Progress Simulation::stepOnce() {
   const double ckInterval = scene_.checkpointInterval;
   const bool simDue = solver_->time() >= nextCheckpoint_ * (1 - 1e-15);
   const bool wallDue = scene_.checkpointWallInterval > 0 && wall() - lastCheckpointWall_ >= scene_.checkpointWallInterval;
-  // Checkpoints hold the grid state only: runs with particles take none (they cannot resume yet).
-  if ((simDue || wallDue) && !particles_ && solver_->time() < tEnd * (1 - 1e-15)) {
+  if ((simDue || wallDue) && solver_->time() < tEnd * (1 - 1e-15)) {
     writeCheckpoint(wall());
     lastCheckpointWall_ = wall();
   }
