@@ -207,7 +207,9 @@ Progress Simulation::stepOnce() {
     lastCheckpointWall_ = wall();
   }
   while (solver_->time() >= nextCheckpoint_ * (1 - 1e-15)) nextCheckpoint_ += ckInterval;
-  return {solver_->time(), t0, tEnd, steps_, wall(), dt, &d, volume, totalOutflow_, balance, kinetic};
+  // Viewers plot the kinetic energy of everything that moves: grid phases and particles.
+  const double allKinetic = kinetic + (particles_ ? particles_->solver().diagnostics().kinetic : 0.0);
+  return {solver_->time(), t0, tEnd, steps_, wall(), dt, &d, volume, totalOutflow_, balance, allKinetic};
 }
 
 RunSummary Simulation::finish() {
