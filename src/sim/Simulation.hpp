@@ -27,7 +27,7 @@ struct Progress {
   double volume = 0;             ///< both phases [m^3]
   double cumulativeOutflow = 0;  ///< volume that has left the domain so far [m^3]
   double balanceError = 0;       ///< (volume + cumulative outflow - initial volume) / initial volume
-  double kineticEnergy = 0;      ///< [J]
+  double kineticEnergy = 0;      ///< [J], grid phases and particles
 };
 
 /// What a finished run reports (also written to summary.json).
