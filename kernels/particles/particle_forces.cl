@@ -40,7 +40,7 @@ __kernel void particle_forces(__constant const ParticleParams* p, __constant con
   const real ri2 = rhoA[i] * rhoA[i];
   const real Sxx = Nxx[i] / ri2, Syy = Nyy[i] / ri2, Sxy = Nxy[i] / ri2;
   const real4 Ri = p->eps_art > (real)0 ? artificial_stress(p->eps_art, Sxx, Syy, Sxy) : (real4)(0);
-  const int cap = get_global_size(0);
+  const int cap = p->count;  // stride of the Minv rows
   const real ai00 = Minv[i], ai01 = Minv[cap + i], ai11 = Minv[2 * cap + i];
   real accx = 0, accy = 0;
   const NeighbourCellRange cells = neighbour_cells_around(ng, xi, yi);

@@ -84,7 +84,7 @@ __kernel void particle_stress(__constant const ParticleParams* p, __constant con
   Nyy[i] = Hi * (s.syy + lat);
   Nxy[i] = Hi * s.sxy;
   // The correction matrix for the momentum equation (M is symmetric: one off-diagonal term).
-  const int cap = get_global_size(0);
+  const int cap = p->count;  // stride of the Minv rows
   Minv[i] = i00;
   Minv[cap + i] = (real)0.5 * (i01 + i10);
   Minv[2 * cap + i] = i11;

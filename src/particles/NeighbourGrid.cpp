@@ -1,3 +1,4 @@
+#include "particles/LaunchSize.hpp"
 #include "particles/NeighbourGrid.hpp"
 
 #include <algorithm>
@@ -105,7 +106,7 @@ void NeighbourGrid::build(const compute::RealBuffer& x, const compute::RealBuffe
   // Clear the cells the previous build filled, while its sorted keys still exist.
   if (!clearAll_ && count_ > 0) {
     clearCells_.bind(sortedKeys_, static_cast<cl_uint>(count_), cellStart_, cellEnd_);
-    clearCells_.launch({count_});
+    clearCells_.launch({count_}, kParticleGroup);
   }
   reserve(n);
   if (clearAll_) {
@@ -117,10 +118,10 @@ void NeighbourGrid::build(const compute::RealBuffer& x, const compute::RealBuffe
   count_ = n;
   if (n == 0) return;
   cellKeys_.bind(params_, x, y, un, keys_);
-  cellKeys_.launch({n});
+  cellKeys_.launch({n}, kParticleGroup);
   sort_.sortWithIndex(keys_, n, sortedKeys_, order_);
   cellRanges_.bind(sortedKeys_, un, cellStart_, cellEnd_, inside_);
-  cellRanges_.launch({n});
+  cellRanges_.launch({n}, kParticleGroup);
 }
 
 void NeighbourGrid::checkGather(const compute::RawBuffer& src, std::size_t srcSize, const compute::RawBuffer& dst,
@@ -135,19 +136,19 @@ void NeighbourGrid::checkGather(const compute::RawBuffer& src, std::size_t srcSi
 void NeighbourGrid::gather(const compute::RealBuffer& src, compute::RealBuffer& dst) {
   checkGather(src.raw(), src.size(), dst.raw(), dst.size());
   gatherReal_.bind(src, order_, static_cast<cl_uint>(count_), dst);
-  gatherReal_.launch({count_});
+  gatherReal_.launch({count_}, kParticleGroup);
 }
 
 void NeighbourGrid::gather(const compute::Buffer<cl_uint>& src, compute::Buffer<cl_uint>& dst) {
   checkGather(src.raw(), src.size(), dst.raw(), dst.size());
   gatherUint_.bind(src, order_, static_cast<cl_uint>(count_), dst);
-  gatherUint_.launch({count_});
+  gatherUint_.launch({count_}, kParticleGroup);
 }
 
 void NeighbourGrid::gather(const compute::Buffer<cl_uchar>& src, compute::Buffer<cl_uchar>& dst) {
   checkGather(src.raw(), src.size(), dst.raw(), dst.size());
   gatherUchar_.bind(src, order_, static_cast<cl_uint>(count_), dst);
-  gatherUchar_.launch({count_});
+  gatherUchar_.launch({count_}, kParticleGroup);
 }
 
 void NeighbourGrid::reorder(compute::RealBuffer& field) {
@@ -169,7 +170,7 @@ void NeighbourGrid::listNeighbours(const compute::RealBuffer& xSorted, const com
   if (lists_.name().empty()) lists_ = compute::Kernel(ctx_.program(kListFile), "particles_neighbour_lists");
   lists_.bind(params_, cellStart_, cellEnd_, xSorted, ySorted, static_cast<cl_uint>(count_), compute::RealArg{radius},
               static_cast<cl_uint>(capacity), count, list);
-  lists_.launch({count_});
+  lists_.launch({count_}, kParticleGroup);
 }
 
 std::size_t NeighbourGrid::readInsideCount() const { return inside_.read()[0]; }

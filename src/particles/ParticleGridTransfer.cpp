@@ -1,3 +1,4 @@
+#include "particles/LaunchSize.hpp"
 #include "particles/ParticleGridTransfer.hpp"
 
 #include <cmath>
@@ -111,7 +112,7 @@ void ParticleGridTransfer::gridToParticles(const compute::RealBuffer& field, con
   checkCells({&field}, "G2P");
   if (n == 0) return;
   g2p_.bind(grid_.nx, grid_.ny, compute::RealArg{grid_.dx}, field, x, y, static_cast<cl_uint>(n), out);
-  g2p_.launch(compute::Range{n}, {0, 0}, "grid_to_particles");
+  g2p_.launch(compute::Range{n}, kParticleGroup, "grid_to_particles");
 }
 
 void ParticleGridTransfer::gridVelocityToParticles(const compute::RealBuffer& u, const compute::RealBuffer& v,
@@ -126,7 +127,7 @@ void ParticleGridTransfer::gridVelocityToParticles(const compute::RealBuffer& u,
   if (n == 0) return;
   g2pVelocity_.bind(grid_.nx, grid_.ny, compute::RealArg{grid_.dx}, u, v, du, dv, compute::RealArg{picFraction}, x, y,
                     static_cast<cl_uint>(n), vx, vy);
-  g2pVelocity_.launch(compute::Range{n}, {0, 0}, "grid_velocity_to_particles");
+  g2pVelocity_.launch(compute::Range{n}, kParticleGroup, "grid_velocity_to_particles");
 }
 
 }  // namespace talus::particles

@@ -10,6 +10,7 @@
 #include "core/Constants.hpp"
 #include "core/Error.hpp"
 #include "flow/SlopeGravity.hpp"
+#include "particles/LaunchSize.hpp"
 #include "particles/ParticleParams.hpp"
 
 namespace talus::particles {
@@ -303,16 +304,16 @@ void ParticleSolver::subStep(double ds) {
   if (count_ == 0) return;
   const compute::Range global{count_};
   density_.bind(params_, ng.params(), ng.cellStart(), ng.cellEnd(), x_, y_, V_, A_, rho_, rhoA_, H_);
-  density_.launch(global, {0, 0}, "particle_density");
+  density_.launch(global, kParticleGroup, "particle_density");
   stress_.bind(params_, ng.params(), ng.cellStart(), ng.cellEnd(), x_, y_, vx_, vy_, A_, H_, rho_, gn_, phi_, delta_, sxx_,
                syy_, sxy_, coh_, coh0_, plastic_, Nxx_, Nyy_, Nxy_, Minv_, div_, compute::RealArg{ds});
-  stress_.launch(global, {0, 0}, "particle_stress");
+  stress_.launch(global, kParticleGroup, "particle_stress");
   forces_.bind(params_, ng.params(), ng.cellStart(), ng.cellEnd(), x_, y_, vx_, vy_, m_, rhoA_, Nxx_, Nyy_, Nxy_, Minv_,
                ax_, ay_);
-  forces_.launch(global, {0, 0}, "particle_forces");
+  forces_.launch(global, kParticleGroup, "particle_forces");
   integrate_.bind(params_, mask_, gradX_, gradY_, gn_, x_, y_, vx_, vy_, m_, delta_, ax_, ay_, A_, div_, V_, rho_, Vf_,
                   Vf0_, coh_, coh0_, released_, outMass_, compute::RealArg{ds});
-  integrate_.launch(global, {0, 0}, "particle_integrate");
+  integrate_.launch(global, kParticleGroup, "particle_integrate");
   diag_.outflowMass += reducer_.sum(outMass_, count_);
 }
 
@@ -323,7 +324,7 @@ void ParticleSolver::updateDiagnostics() {
     return;
   }
   speedKernel_.bind(params_, vx_, vy_, m_, Vf_, released_, speed_, static_cast<int>(capacity_));
-  speedKernel_.launch(compute::Range{count_}, {0, 0}, "particle_totals");
+  speedKernel_.launch(compute::Range{count_}, kParticleGroup, "particle_totals");
   using compute::ReduceOp;
   const std::vector<double> r = reducer_.reduceRows(
       speed_, count_, {ReduceOp::Max, ReduceOp::Sum, ReduceOp::Sum, ReduceOp::Sum, ReduceOp::Sum}, capacity_);

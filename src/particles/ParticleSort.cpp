@@ -1,3 +1,4 @@
+#include "particles/LaunchSize.hpp"
 #include "particles/ParticleSort.hpp"
 
 #include <algorithm>
@@ -131,7 +132,7 @@ void ParticleSort::sortPacked(std::size_t padded) {
 void ParticleSort::unpack(std::size_t n, compute::Buffer<cl_uint>& sortedKeys,
                           compute::Buffer<cl_uint>& sortedValues) {
   unpack_.bind(packed_, static_cast<cl_uint>(n), sortedKeys, sortedValues);
-  unpack_.launch({n}, {0, 0}, "sort_unpack");
+  unpack_.launch({n}, kParticleGroup, "sort_unpack");
 }
 
 }  // namespace talus::particles
