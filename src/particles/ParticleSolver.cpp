@@ -120,6 +120,10 @@ ParticleSolver::ParticleSolver(compute::Context& ctx, const Grid& grid, const Pa
   const double r = 2 * h_;
   neighbours_ = std::make_unique<NeighbourGrid>(ctx, DomainBox{-r, -r, grid.nx * grid.dx + r, grid.ny * grid.dx + r}, r);
   transfer_ = std::make_unique<ParticleGridTransfer>(ctx, grid);
+  releasedMap_ = compute::RealBuffer(ctx, n, "released fluid map");
+  scratchX_ = compute::RealBuffer(ctx, n, "released discharge x");
+  scratchY_ = compute::RealBuffer(ctx, n, "released discharge y");
+  releasedMap_.fill(0.0);
 }
 
 double ParticleSolver::releaseToGrid(compute::RealBuffer& h, compute::RealBuffer& qx, compute::RealBuffer& qy) {
@@ -128,6 +132,7 @@ double ParticleSolver::releaseToGrid(compute::RealBuffer& h, compute::RealBuffer
   neighbours_->build(x_, y_, count_);
   reorderAll();
   transfer_->releasedToGrid(*neighbours_, x_, y_, released_, vx_, vy_, h, qx, qy, true);
+  transfer_->releasedToGrid(*neighbours_, x_, y_, released_, vx_, vy_, releasedMap_, scratchX_, scratchY_, true);
   released_.fill(0.0);
   diag_.pendingRelease = 0;
   return volume;
@@ -139,6 +144,7 @@ ParticleGridFields ParticleSolver::gridFields() {
   if (count_ == 0) {
     f.thickness.assign(cells, 0.0);
     f.cohesionFraction.assign(cells, -1.0);
+    f.releasedFluid = releasedMap_.download();
     return f;
   }
   neighbours_->build(x_, y_, count_);
@@ -150,6 +156,7 @@ ParticleGridFields ParticleSolver::gridFields() {
   transfer_->fieldToGrid(*neighbours_, x_, y_, m_, coh_, FieldTransfer::WeightedMean, c);
   transfer_->fieldToGrid(*neighbours_, x_, y_, m_, coh0_, FieldTransfer::WeightedMean, c0);
   f.thickness = h.download();
+  f.releasedFluid = releasedMap_.download();
   const std::vector<double> cm = c.download(), c0m = c0.download();
   f.cohesionFraction.resize(cells);
   for (std::size_t k = 0; k < cells; ++k) f.cohesionFraction[k] = c0m[k] > 0 ? cm[k] / c0m[k] : -1.0;

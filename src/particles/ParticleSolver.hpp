@@ -53,6 +53,7 @@ struct ParticleState {
 struct ParticleGridFields {
   std::vector<double> thickness;         ///< confined-phase thickness H_c [m]
   std::vector<double> cohesionFraction;  ///< sum w m c / sum w m c0 (-1 where no particle with c0 > 0 reaches)
+  std::vector<double> releasedFluid;     ///< fluid released by broken bonds since the start, as thickness [m]
 };
 
 struct ParticleDiagnostics {
@@ -116,6 +117,7 @@ class ParticleSolver {
   ParticleDiagnostics diag_;
   std::unique_ptr<NeighbourGrid> neighbours_;
   std::unique_ptr<ParticleGridTransfer> transfer_;
+  compute::RealBuffer releasedMap_, scratchX_, scratchY_;  ///< cumulative released fluid per cell [m]
   compute::Reducer reducer_;
   compute::RawBuffer params_;
   compute::Buffer<uint8_t> mask_;

@@ -272,6 +272,7 @@ void Simulation::writeFinal(const RunSummary& s, Ending ending) {
       const double none = -1.0;
       out_->writeMap("hcfinal", pf.thickness);
       out_->writeMap("cfracfinal", pf.cohesionFraction, &none);
+      out_->writeMap("releasedfluid", pf.releasedFluid);
     }
   }
   out_->writeText("summary.json", summaryJson(s, ending));

@@ -164,6 +164,11 @@ TEST(ParticleCut, ReleasedWaterReachesTheGridConserved) {
   std::printf("water release: %.3f of %.3f m^3 released to the grid; fluid volume balance %.2e, mass balance %.2e\n",
               released, water0, worstVolume, worstMass);
   EXPECT_GT(released, 0.1 * water0) << "the collapsing column must release water";
+  // The released-fluid map holds what was moved, cell by cell (same P2G weights).
+  const std::vector<double> map = particles.gridFields().releasedFluid;
+  double mapped = 0;
+  for (double v : map) mapped += v * dx * dx;
+  EXPECT_NEAR(mapped, released, 1e-12 * released);
   EXPECT_LT(worstVolume, 1e-12);
   EXPECT_LT(worstMass, 1e-12);
 }
