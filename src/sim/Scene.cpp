@@ -110,7 +110,13 @@ Scene loadScene(const io::RunConfig& cfg) {
       m.confined = loadMap(cfg, "Confined Fluid Fraction", s.dem, demKey.file);
       s.particles.spacing.volume = cfg.real("Particle Fractional Dimension");
       s.particles.spacing.perCell = cfg.real("Particles Per Cell");
-      splitStructured(s.dem.grid, m, s.particles);
+      try {
+        splitStructured(s.dem.grid, m, s.particles);
+      } catch (const InputError& e) {  // name the keys that set the particle count
+        throw InputError(cfg.origin("Particles Per Cell") + ": keys 'Particle Fractional Dimension' (" +
+                         io::formatNumber(s.particles.spacing.volume) + " m^3) / 'Particles Per Cell' (" +
+                         io::formatNumber(s.particles.spacing.perCell) + "): " + e.what());
+      }
       hs = m.hs;
       s.flow.h = m.hf;
       s.particles.terrain.slopeCorrection = cfg.flag("Slope Correction");

@@ -243,6 +243,15 @@ TEST_F(Cli, HybridRunWritesParticleLayers) {
   EXPECT_NEAR(volume, 2620.0, 1e-5 * 2620.0);
 }
 
+TEST_F(Cli, HybridRunRejectsAbsurdParticleCount) {
+  writeScene("[Solids]\nInclude Initial Solids=1\nInitial Solid Height=1\n"
+             "[Particles]\nUse Material Point Method=1\nParticle Fractional Dimension=1e-9\n");
+  const Outcome r = talus("run case.run");
+  EXPECT_EQ(r.status, 2) << r;
+  EXPECT_TRUE(contains(r.err, "Particle Fractional Dimension")) << r;
+  EXPECT_TRUE(contains(r.err, "more than")) << r;
+}
+
 TEST_F(Cli, HybridRunRejectsImpossibleShearModulus) {
   writeScene("[Solids]\nInclude Initial Solids=1\nInitial Solid Height=1\n"
              "[Particles]\nUse Material Point Method=1\nElastic Modulus=1e7\nShear Modulus=1e6\n");
