@@ -1,6 +1,8 @@
 // Terrain forces and the symplectic update of the particles (spec §5): bed-slope gravity -g_n grad b
 // (horizontal projection, as the grid model), basal Coulomb friction tan(delta) (1 - B gamma) g_n
-// applied implicitly (it stops a particle but never reverses it; gamma = 0 for dry particles), then
+// applied implicitly (it stops a particle but never reverses it; gamma = rho_f / rho_c where the
+// grid's free fluid stands at the particle (`fluid_depth`, from G2P), 0 for dry particles: buoyancy
+// and pore pressure reduce the effective normal stress, P.39), then
 // v <- v + dt a, x <- x + dt v (symplectic Euler), and the particle's area A <- A exp(dt div v). A particle that leaves the raster or enters a
 // nodata cell is removed: its mass goes to `out_mass` (tallied by the host as outflow), its
 // position becomes NaN (it sorts behind every live particle at the next neighbour build) and its
@@ -19,7 +21,8 @@ __kernel void particle_integrate(__constant const ParticleParams* p, __global co
                                  __global const real* ay, __global real* A, __global const real* divergence,
                                  __global real* V, __global real* rho, __global real* Vf,
                                  __global const real* Vf0, __global const real* coh, __global const real* coh0,
-                                 __global real* released, __global real* out_mass, const real dt) {
+                                 __global real* released, __global const real* fluid_depth,
+                                 __global real* out_mass, const real dt) {
   const int i = get_global_id(0);
   if (i >= p->count) return;
   out_mass[i] = 0;
@@ -39,7 +42,8 @@ __kernel void particle_integrate(__constant const ParticleParams* p, __global co
   const real bx = terrain_sample(p, grad_x, xi, yi), by = terrain_sample(p, grad_y, xi, yi);
   real ux = vx[i] + dt * (ax[i] - g * bx), uy = vy[i] + dt * (ay[i] - g * by);
   const real speed = sqrt(ux * ux + uy * uy);
-  const real stop = dt * tan(delta[i]) * g;
+  const real gamma = fluid_depth[i] > (real)1e-6 ? p->rho_f / rho[i] : (real)0;
+  const real stop = dt * tan(delta[i]) * g * fmax((real)0, (real)1 - p->pore_b * gamma);
   if (speed <= stop) {
     ux = uy = 0;
   } else {

@@ -3,6 +3,10 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "compute/Buffer.hpp"
+#include "compute/Precision.hpp"
+#include "flow/FlowSettings.hpp"
+
 namespace talus::flow {
 
 template <class Real>
@@ -18,5 +22,13 @@ struct DebrisParamsT {
 static_assert(offsetof(DebrisParamsT<float>, kConst) == 16 && sizeof(DebrisParamsT<float>) == 96, "DebrisParams<float>");
 static_assert(offsetof(DebrisParamsT<double>, kConst) == 16 && sizeof(DebrisParamsT<double>) == 176,
               "DebrisParams<double>");
+
+/// Material defaults of the two-phase kernels where a cell has no solids.
+inline constexpr double kDebrisDefaultPhi = 0.5235987755982988;  // 30 degrees
+inline constexpr double kDebrisDefaultRhoS = 2650.0;
+inline constexpr double kDebrisDefaultGrain = 0.01;
+
+/// Writes the DebrisParams block of `d` in the kernels' precision (buf: sizeof(DebrisParamsT<double>)).
+void writeDebrisParams(compute::RawBuffer& buf, const DebrisSettings& d, compute::Precision precision);
 
 }  // namespace talus::flow

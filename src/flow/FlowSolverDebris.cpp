@@ -15,37 +15,10 @@ namespace {
 
 constexpr int kSolidComponents = 6;  // h_s, q_sx, q_sy, h_s phi, h_s rho_s, h_s d
 constexpr int kMaximaComponents = 7;
-constexpr double kDefaultPhi = 0.5235987755982988;  // 30 degrees, where no solids are
-constexpr double kDefaultRhoS = 2650.0;
-constexpr double kDefaultGrain = 0.01;
+constexpr double kDefaultPhi = kDebrisDefaultPhi;  // 30 degrees, where no solids are
+constexpr double kDefaultRhoS = kDebrisDefaultRhoS;
+constexpr double kDefaultGrain = kDebrisDefaultGrain;
 const compute::Range kLocal2D{kTile, kTile};
-
-template <class Real>
-void writeDebrisParams(compute::RawBuffer& buf, const DebrisSettings& d) {
-  DebrisParamsT<Real> p{};
-  p.earthPressure = static_cast<int32_t>(d.earthPressure);
-  p.dragLaw = static_cast<int32_t>(d.drag);
-  p.virtualMass = d.virtualMass ? 1 : 0;
-  p.deltaFromPhi = d.deltaFromPhi ? 1 : 0;
-  p.kConst = static_cast<Real>(d.kConst);
-  p.rhoF = static_cast<Real>(d.fluidDensity);
-  p.poreB = static_cast<Real>(d.poreB);
-  p.dragMult = static_cast<Real>(d.dragMultiplier);
-  p.dragM = static_cast<Real>(d.dragPExponent);
-  p.dragBigM = static_cast<Real>(d.dragM);
-  p.dragKappa = static_cast<Real>(d.dragKappa);
-  p.viscA = static_cast<Real>(d.viscA);
-  p.viscB = static_cast<Real>(d.viscB);
-  p.phiDefault = static_cast<Real>(kDefaultPhi);
-  p.rhoSDefault = static_cast<Real>(kDefaultRhoS);
-  p.dDefault = static_cast<Real>(kDefaultGrain);
-  p.filmH = static_cast<Real>(d.filmThickness);
-  p.invNR = static_cast<Real>(d.reynolds > 0 ? 1.0 / d.reynolds : 0.0);
-  p.invNRA = static_cast<Real>(d.reynoldsInterfacial > 0 ? 1.0 / d.reynoldsInterfacial : 0.0);
-  p.chi = static_cast<Real>(d.chi);
-  p.xi = static_cast<Real>(d.xi);
-  buf.writeBytes(&p, sizeof p);
-}
 
 /// `v` or, when empty, `fallback` everywhere.
 std::vector<double> orFill(const std::vector<double>& v, std::size_t n, double fallback, const char* what) {
@@ -77,10 +50,7 @@ void FlowSolver::buildDebris() {
   debrisStage_ = compute::Kernel(ctx.program("flow/debris_stage.cl", opts), "debris_stage");
   debrisTrack_ = compute::Kernel(ctx.program("flow/debris_diagnostics.cl", opts), "debris_track_maxima");
   debrisDiagnostics_ = compute::Kernel(ctx.program("flow/debris_diagnostics.cl", opts), "debris_tile_diagnostics");
-  if (ctx.precision() == compute::Precision::Double)
-    writeDebrisParams<double>(debrisParams_, settings_.debris);
-  else
-    writeDebrisParams<float>(debrisParams_, settings_.debris);
+  writeDebrisParams(debrisParams_, settings_.debris, ctx.precision());
 }
 
 void FlowSolver::setDebrisInput(const FlowInput& in, const std::vector<double>& h) {

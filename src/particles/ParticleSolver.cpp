@@ -9,6 +9,7 @@
 #include "compute/Program.hpp"
 #include "core/Constants.hpp"
 #include "core/Error.hpp"
+#include "flow/DebrisParams.hpp"
 #include "flow/SlopeGravity.hpp"
 #include "particles/LaunchSize.hpp"
 #include "particles/ParticleParams.hpp"
@@ -138,6 +139,34 @@ double ParticleSolver::releaseToGrid(compute::RealBuffer& h, compute::RealBuffer
   return volume;
 }
 
+void ParticleSolver::setFluidCoupling(const flow::DebrisSettings& fluid, double grain) {
+  if (!(grain > 0)) throw InputError("particle fluid coupling: grain size must be positive");
+  debrisParams_ = compute::RawBuffer(ctx_, sizeof(flow::DebrisParamsT<double>), "particle drag parameters");
+  flow::writeDebrisParams(debrisParams_, fluid, ctx_.precision());
+  drag_ = compute::Kernel(ctx_.program("particles/particle_exchange.cl"), "particle_fluid_drag");
+  const std::size_t cells = grid_.cells();
+  for (compute::RealBuffer* b : {&cellH_, &cellM_, &cellPx_, &cellPy_, &cellDu_, &cellDv_})
+    *b = compute::RealBuffer(ctx_, cells, "particle exchange cell field");
+  grain_ = grain;
+  coupled_ = true;
+}
+
+void ParticleSolver::exchangeWithFluid(const compute::RealBuffer& h, compute::RealBuffer& qx, compute::RealBuffer& qy,
+                                       double dt) {
+  if (!coupled_ || count_ == 0) return;
+  neighbours_->build(x_, y_, count_);
+  reorderAll();
+  transfer_->confinedToGrid(*neighbours_, x_, y_, V_, m_, vx_, vy_, cellH_, cellM_, cellPx_, cellPy_);
+  const int cells = static_cast<int>(grid_.cells());
+  drag_.bind(debrisParams_, cells, compute::RealArg{grid_.dx}, compute::RealArg{1e-6}, compute::RealArg{grain_}, cellH_,
+             cellM_, cellPx_, cellPy_, h, qx, qy, cellDu_, cellDv_, compute::RealArg{dt});
+  drag_.launch(compute::Range{grid_.cells()}, kParticleGroup, "particle_fluid_drag");
+  // FLIP: each particle gains the velocity change of the cells it weighs on (same weights as P2G).
+  transfer_->gridVelocityToParticles(cellDu_, cellDv_, cellDu_, cellDv_, 0.0, x_, y_, count_, vx_, vy_);
+  transfer_->gridToParticles(h, x_, y_, count_, fluidDepth_);
+  updateDiagnostics();
+}
+
 ParticleGridFields ParticleSolver::gridFields() {
   const std::size_t cells = grid_.cells();
   ParticleGridFields f;
@@ -175,6 +204,7 @@ void ParticleSolver::setParticles(const SeededParticles& seeded, const ParticleM
   make(A_, "particle area"), make(V_, "particle volume"), make(div_, "particle divergence");
   make(fsc0_, "particle initial structured fraction"), make(ffc0_, "particle initial confined fraction");
   make(Vf_, "particle confined fluid"), make(Vf0_, "particle initial confined fluid"), make(released_, "particle released fluid");
+  make(fluidDepth_, "fluid depth at the particles");
   make(x_, "particle x"), make(y_, "particle y"), make(vx_, "particle vx"), make(vy_, "particle vy");
   make(m_, "particle mass"), make(rho_, "particle density"), make(phi_, "particle phi"), make(delta_, "particle delta");
   make(coh_, "particle cohesion"), make(coh0_, "particle initial cohesion"), make(sxx_, "particle sxx");
@@ -198,7 +228,7 @@ void ParticleSolver::setParticles(const SeededParticles& seeded, const ParticleM
     if (!(vf[q] >= 0 && vf[q] <= seeded.volume[q]))
       throw InputError("particle " + std::to_string(q) + ": confined fluid volume " + std::to_string(vf[q]) +
                        " m^3 outside [0, the particle's volume " + std::to_string(seeded.volume[q]) + "]");
-  Vf_.upload(vf), Vf0_.upload(vf), released_.upload(zero);
+  Vf_.upload(vf), Vf0_.upload(vf), released_.upload(zero), fluidDepth_.upload(zero);
   x_.upload(seeded.x), y_.upload(seeded.y), vx_.upload(zero), vy_.upload(zero), m_.upload(seeded.mass);
   rho_.upload(rho), phi_.upload(phi), delta_.upload(delta), coh_.upload(coh), coh0_.upload(coh);
   sxx_.upload(zero), syy_.upload(zero), sxy_.upload(zero), plastic_.upload(zero);
@@ -258,7 +288,7 @@ void ParticleSolver::step(double dt) {
 
 std::vector<compute::RealBuffer*> ParticleSolver::stateFields() {
   return {&x_, &y_, &vx_, &vy_, &m_, &rho_, &phi_, &delta_, &coh_, &coh0_, &sxx_, &syy_, &sxy_,
-          &plastic_, &A_, &V_, &fsc0_, &ffc0_, &Vf_, &Vf0_, &released_};
+          &plastic_, &A_, &V_, &fsc0_, &ffc0_, &Vf_, &Vf0_, &released_, &fluidDepth_};
 }
 
 void ParticleSolver::reorderAll() {
@@ -319,7 +349,7 @@ void ParticleSolver::subStep(double ds) {
                ax_, ay_);
   forces_.launch(global, kParticleGroup, "particle_forces");
   integrate_.bind(params_, mask_, gradX_, gradY_, gn_, x_, y_, vx_, vy_, m_, delta_, ax_, ay_, A_, div_, V_, rho_, Vf_,
-                  Vf0_, coh_, coh0_, released_, outMass_, compute::RealArg{ds});
+                  Vf0_, coh_, coh0_, released_, fluidDepth_, outMass_, compute::RealArg{ds});
   integrate_.launch(global, kParticleGroup, "particle_integrate");
   diag_.outflowMass += reducer_.sum(outMass_, count_);
 }

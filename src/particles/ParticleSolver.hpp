@@ -15,6 +15,7 @@
 #include "compute/Kernel.hpp"
 #include "compute/Reducer.hpp"
 #include "core/Grid.hpp"
+#include "flow/FlowSettings.hpp"
 #include "particles/NeighbourGrid.hpp"
 #include "particles/ParticleGridTransfer.hpp"
 #include "particles/ParticleSeeding.hpp"
@@ -95,6 +96,16 @@ class ParticleSolver {
   /// `h` (thickness, m) and its momentum (the particles' velocity) to `qx`, `qy` (m^2/s), by P2G with
   /// the cubic B-spline weights (exact in total). Returns the volume moved [m^3] (0: nothing launched).
   double releaseToGrid(compute::RealBuffer& h, compute::RealBuffer& qx, compute::RealBuffer& qy);
+  /// Couples the particles to the grid's free fluid with the drag closure and parameters of
+  /// `fluid` (drag law, multiplier, exponents, viscosity, virtual mass, fluid density) and grain
+  /// size `grain` [m]; until called, exchangeWithFluid() does nothing.
+  void setFluidCoupling(const flow::DebrisSettings& fluid, double grain);
+  /// One exchange with the free fluid over dt (kernels/particles/particle_exchange.cl): drag relaxes
+  /// the relative velocity of the confined phase and the fluid per cell, conserving momentum (the
+  /// fluid's discharge qx, qy is updated, the particles get the confined phase's change by G2P), and
+  /// the fluid depth at every particle is stored for the buoyancy-reduced friction of the next
+  /// sub-steps. h, qx, qy: the flow solver's fields.
+  void exchangeWithFluid(const compute::RealBuffer& h, compute::RealBuffer& qx, compute::RealBuffer& qy, double dt);
   std::size_t count() const { return count_; }
   /// g_n per terrain cell [m/s^2] (host copy of what the kernels use).
   const std::vector<double>& gn() const { return gnHost_; }
@@ -124,7 +135,13 @@ class ParticleSolver {
   compute::RealBuffer gradX_, gradY_, gn_;
   // Particle fields (reordered together at every neighbour build).
   compute::RealBuffer x_, y_, vx_, vy_, m_, rho_, phi_, delta_, coh_, coh0_, sxx_, syy_, sxy_, plastic_, A_, V_, fsc0_, ffc0_;
-  compute::RealBuffer Vf_, Vf0_, released_;
+  compute::RealBuffer Vf_, Vf0_, released_, fluidDepth_;
+  // Fluid coupling (setFluidCoupling).
+  bool coupled_ = false;
+  double grain_ = 0.01;
+  compute::RawBuffer debrisParams_;
+  compute::Kernel drag_;
+  compute::RealBuffer cellH_, cellM_, cellPx_, cellPy_, cellDu_, cellDv_;
   std::vector<double> gnHost_;
   // Per sub-step scratch (not reordered).
   compute::RealBuffer rhoA_, H_, Nxx_, Nyy_, Nxy_, Minv_, div_, ax_, ay_, outMass_, speed_;

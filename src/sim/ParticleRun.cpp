@@ -14,6 +14,7 @@ namespace talus::sim {
 ParticleRun::ParticleRun(compute::Context& ctx, const Raster& dem, const ParticleScene& scene) : dem_(dem) {
   solver_ = std::make_unique<particles::ParticleSolver>(ctx, dem.grid, scene.terrain, scene.settings);
   solver_->setParticles(scene.seeded, scene.material);
+  solver_->setFluidCoupling(scene.fluid, scene.grain);
   initialMass_ = solver_->diagnostics().mass;
 }
 
@@ -30,6 +31,10 @@ std::string ParticleRun::step(double dt, double time, flow::FlowSolver& flow) {
       releasedLast_ = solver_->releaseToGrid(h, qx, qy);
     });
   releasedTotal_ += releasedLast_;
+  // Drag with the free fluid, and the fluid depth at the particles for their friction.
+  flow.addFluid([&](compute::RealBuffer& h, compute::RealBuffer& qx, compute::RealBuffer& qy) {
+    solver_->exchangeWithFluid(h, qx, qy, dt);
+  });
   // A particle faster than the elastic wave speed times 10 (or NaN) means the explicit scheme has
   // blown up: no physical flow on a DEM gets there.
   if (!std::isfinite(d.maxSpeed) || !std::isfinite(d.kinetic)) {

@@ -46,6 +46,14 @@ void splitStructured(const Grid& grid, InitialMaterial& m, ParticleScene& p) {
     // The particle's share of its cell's confined fluid (its volume is the same share of H_c dx^2).
     p.material.fluidVolume[q] = std::min(confinedFluid[k] * area / perCell[k], p.seeded.volume[q]);
   }
+  if (!m.grain.empty() && np > 0) {  // the particles' mean grain size, weighted by their volume
+    double sum = 0, weight = 0;
+    for (std::size_t q = 0; q < np; ++q) {
+      sum += p.seeded.volume[q] * m.grain[p.seeded.cell[q]];
+      weight += p.seeded.volume[q];
+    }
+    p.grain = sum / weight;
+  }
   p.terrain.mask = m.mask;
   p.terrain.bed = m.bed;
 }

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "core/Grid.hpp"
+#include "flow/FlowSettings.hpp"
 #include "particles/ParticleSeeding.hpp"
 #include "particles/ParticleSettings.hpp"
 #include "particles/ParticleSolver.hpp"
@@ -18,6 +19,8 @@ struct ParticleScene {
   particles::ParticleTerrain terrain;
   particles::SeededParticles seeded;
   particles::ParticleMaterial material;  ///< one value per seeded particle
+  flow::DebrisSettings fluid;            ///< drag closure and its parameters for the fluid coupling
+  double grain = 0.01;                   ///< grain size of the confined phase for the drag [m]
 };
 
 /// Per-cell initial maps the split needs (row-major on the DEM's grid; mask 0 = outside).
@@ -31,6 +34,7 @@ struct InitialMaterial {
   std::vector<double> cohesion;      ///< [Pa]
   std::vector<double> structured;    ///< f_sc: share of the solids that is structured [0, 1]
   std::vector<double> confined;      ///< f_fc: share of the fluid held in the structured solids [0, 1]
+  std::vector<double> grain;         ///< grain size [m] (empty: the scene keeps its default)
 };
 
 /// Seeds the particles of the structured part: per cell the confined phase H_c = f_sc h_s + f_fc h_f

@@ -108,6 +108,7 @@ Scene loadScene(const io::RunConfig& cfg) {
       m.cohesion = cohesion;
       m.structured = loadMap(cfg, "Structured Fraction", s.dem, demKey.file);
       m.confined = loadMap(cfg, "Confined Fluid Fraction", s.dem, demKey.file);
+      m.grain = loadMap(cfg, "Initial Solid Rocksize", s.dem, demKey.file);
       s.particles.spacing.volume = cfg.real("Particle Fractional Dimension");
       s.particles.spacing.perCell = cfg.real("Particles Per Cell");
       try {
@@ -180,6 +181,7 @@ Scene loadScene(const io::RunConfig& cfg) {
   d.reynoldsInterfacial = cfg.real("Interfacial Reynolds Number");
   d.chi = cfg.real("Viscous Shear Factor");
   d.xi = cfg.real("Viscous Profile Factor");
+  s.particles.fluid = d;  // the particles' drag with the free fluid uses the grid model's closure
   f.limiter = flow::parseLimiter(cfg.choice("Limiter"));
   f.riemann = flow::parseRiemann(cfg.choice("Riemann Solver"));
   f.cfl = cfg.real("CFL");
