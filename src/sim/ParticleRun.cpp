@@ -15,6 +15,7 @@ ParticleRun::ParticleRun(compute::Context& ctx, const Raster& dem, const Particl
   solver_ = std::make_unique<particles::ParticleSolver>(ctx, dem.grid, scene.terrain, scene.settings);
   solver_->setParticles(scene.seeded, scene.material);
   solver_->setFluidCoupling(scene.fluid, scene.grain);
+  fluidDensity_ = scene.settings.fluidDensity;
   initialMass_ = solver_->diagnostics().mass;
 }
 
@@ -64,7 +65,9 @@ void ParticleRun::restoreState(const std::vector<char>& bytes) {
 }
 
 double ParticleRun::balanceError() const {
-  return initialMass_ > 0 ? (mass() + outflow_ - initialMass_) / initialMass_ : 0.0;
+  // Released water left the particles for the grid (and the pending part is still on its way).
+  const double released = fluidDensity_ * (releasedTotal_ + solver_->diagnostics().pendingRelease);
+  return initialMass_ > 0 ? (mass() + outflow_ + released - initialMass_) / initialMass_ : 0.0;
 }
 
 std::string ParticleRun::csvRow() const {

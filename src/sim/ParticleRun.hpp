@@ -33,7 +33,7 @@ class ParticleRun : public ParticleView {
   double initialMass() const { return initialMass_; }
   double mass() const { return solver_->diagnostics().mass; }
   double cumulativeOutflow() const { return outflow_; }
-  /// (mass + outflow - initial) / initial.
+  /// (mass + outflow + rho_f released water - initial) / initial.
   double balanceError() const;
   /// Columns for diagnostics.csv: particles, mass [kg], outflow of the step [kg], kinetic [J].
   static const char* csvHeader() { return "particles,particle_mass_kg,particle_outflow_kg,particle_kinetic_J"; }
@@ -56,7 +56,7 @@ class ParticleRun : public ParticleView {
  private:
   const Raster& dem_;
   std::unique_ptr<particles::ParticleSolver> solver_;
-  double initialMass_ = 0, outflow_ = 0, releasedLast_ = 0, releasedTotal_ = 0;
+  double initialMass_ = 0, outflow_ = 0, releasedLast_ = 0, releasedTotal_ = 0, fluidDensity_ = 1000;
   // Host copy for viewers, refreshed lazily once per step.
   mutable particles::ParticleState cache_;
   mutable bool cacheValid_ = false;

@@ -10,6 +10,8 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <string>
 
 #include "io/ParticleLayerIO.hpp"
 #include "io/RasterIO.hpp"
@@ -57,6 +59,14 @@ TEST(Checkpoint, HybridRunResumesBitwise) {
   double gridWater = 0;
   for (double h : waterBefore) gridWater += h;
   EXPECT_GT(gridWater, 0.0) << "released water must be on the grid";
+  // The particle mass balance counts the released water (double: round-off of ~10^3 masses).
+  {
+    std::ifstream in(dir / "out/summary.json");
+    const std::string json((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::size_t at = json.find("\"balance_error\": ", json.find("\"particles\""));
+    ASSERT_NE(at, std::string::npos) << json;
+    EXPECT_LT(std::fabs(std::stod(json.substr(at + 17))), 1e-12) << json;
+  }
 
   sim::RunSummary resumed;
   {
