@@ -85,4 +85,15 @@ inline NeighbourCellRange neighbour_cells_around(__constant const NeighbourGridP
   return r;
 }
 
+/// The loop of the header as one statement: visits every particle j (a uint, sorted index) of the
+/// 3 x 3 cells around (px, py), the particle itself included; `continue` skips to the next j.
+///   FOR_EACH_NEARBY_PARTICLE(ng, cell_start, cell_end, x[i], y[i], j) { ... }
+#define FOR_EACH_NEARBY_PARTICLE(ng, start, end, px, py, j)                                      \
+  for (NeighbourCellRange nb_r = neighbour_cells_around(ng, px, py), *nb_once = &nb_r; nb_once;   \
+       nb_once = 0)                                                                              \
+    for (int nb_cy = nb_r.y0; nb_cy <= nb_r.y1; ++nb_cy)                                          \
+      for (int nb_cx = nb_r.x0; nb_cx <= nb_r.x1; ++nb_cx)                                        \
+        for (uint j = start[neighbour_cell_key(ng, nb_cx, nb_cy)], nb_end = end[neighbour_cell_key(ng, nb_cx, nb_cy)]; \
+             j < nb_end; ++j)
+
 #endif

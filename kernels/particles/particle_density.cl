@@ -18,18 +18,13 @@ __kernel void particle_density(__constant const ParticleParams* p, __constant co
   if (i >= p->count) return;
   const real xi = x[i], yi = y[i], h = p->h, r2max = (real)4 * h * h;
   real vol = 0, area = 0;
-  const NeighbourCellRange cells = neighbour_cells_around(ng, xi, yi);
-  for (int cy = cells.y0; cy <= cells.y1; ++cy)
-    for (int cx = cells.x0; cx <= cells.x1; ++cx) {
-      const uint c = neighbour_cell_key(ng, cx, cy);
-      for (uint j = cell_start[c]; j < cell_end[c]; ++j) {
-        const real dx = xi - x[j], dy = yi - y[j], r2 = dx * dx + dy * dy;
-        if (r2 >= r2max) continue;
-        const real w = sph_w(sqrt(r2), h);
-        vol += V[j] * w;
-        area += A[j] * w;
-      }
-    }
+  FOR_EACH_NEARBY_PARTICLE(ng, cell_start, cell_end, xi, yi, j) {
+    const real dx = xi - x[j], dy = yi - y[j], r2 = dx * dx + dy * dy;
+    if (r2 >= r2max) continue;
+    const real w = sph_w(sqrt(r2), h);
+    vol += V[j] * w;
+    area += A[j] * w;
+  }
   H[i] = vol / area;
   rhoA[i] = rho[i] * H[i];
 }

@@ -43,41 +43,36 @@ __kernel void particle_forces(__constant const ParticleParams* p, __constant con
   const int cap = p->count;  // stride of the Minv rows
   const real ai00 = Minv[i], ai01 = Minv[cap + i], ai11 = Minv[2 * cap + i];
   real accx = 0, accy = 0;
-  const NeighbourCellRange cells = neighbour_cells_around(ng, xi, yi);
-  for (int cy = cells.y0; cy <= cells.y1; ++cy)
-    for (int cx = cells.x0; cx <= cells.x1; ++cx) {
-      const uint c = neighbour_cell_key(ng, cx, cy);
-      for (uint j = cell_start[c]; j < cell_end[c]; ++j) {
-        if (j == (uint)i) continue;
-        const real dx = xi - x[j], dy = yi - y[j], r2 = dx * dx + dy * dy;
-        if (r2 >= r2max) continue;
-        const real r = sqrt(r2);
-        const real2 g0 = sph_grad((real2)(dx, dy), h);
-        const real c00 = (real)0.5 * (ai00 + Minv[j]), c01 = (real)0.5 * (ai01 + Minv[cap + j]);
-        const real c11 = (real)0.5 * (ai11 + Minv[2 * cap + j]);
-        const real2 gw = (real2)(c00 * g0.x + c01 * g0.y, c01 * g0.x + c11 * g0.y);
-        const real rj2 = rhoA[j] * rhoA[j];
-        real txx = Sxx + Nxx[j] / rj2, tyy = Syy + Nyy[j] / rj2, txy = Sxy + Nxy[j] / rj2;
-        if (p->eps_art > (real)0) {
-          const real4 Rj = artificial_stress(p->eps_art, Nxx[j] / rj2, Nyy[j] / rj2, Nxy[j] / rj2);
-          const real f = sph_w(r, h) / p->w_spacing;
-          real fn = (real)1;
-          for (int k = 0; k < (int)p->n_art; ++k) fn *= f;
-          txx += fn * (Ri.x + Rj.x);
-          tyy += fn * (Ri.y + Rj.y);
-          txy += fn * (Ri.z + Rj.z);
-        }
-        const real vdotr = (vxi - vx[j]) * dx + (vyi - vy[j]) * dy;
-        if (vdotr < (real)0 && (p->alpha_pi > (real)0 || p->beta_pi > (real)0)) {
-          const real mu = h * vdotr / (r2 + (real)0.01 * h * h);
-          const real pi = (-p->alpha_pi * p->sound_speed * mu + p->beta_pi * mu * mu) / ((real)0.5 * (rhoA[i] + rhoA[j]));
-          txx -= pi;
-          tyy -= pi;
-        }
-        accx += m[j] * (txx * gw.x + txy * gw.y);
-        accy += m[j] * (txy * gw.x + tyy * gw.y);
-      }
+  FOR_EACH_NEARBY_PARTICLE(ng, cell_start, cell_end, xi, yi, j) {
+    if (j == (uint)i) continue;
+    const real dx = xi - x[j], dy = yi - y[j], r2 = dx * dx + dy * dy;
+    if (r2 >= r2max) continue;
+    const real r = sqrt(r2);
+    const real2 g0 = sph_grad((real2)(dx, dy), h);
+    const real c00 = (real)0.5 * (ai00 + Minv[j]), c01 = (real)0.5 * (ai01 + Minv[cap + j]);
+    const real c11 = (real)0.5 * (ai11 + Minv[2 * cap + j]);
+    const real2 gw = (real2)(c00 * g0.x + c01 * g0.y, c01 * g0.x + c11 * g0.y);
+    const real rj2 = rhoA[j] * rhoA[j];
+    real txx = Sxx + Nxx[j] / rj2, tyy = Syy + Nyy[j] / rj2, txy = Sxy + Nxy[j] / rj2;
+    if (p->eps_art > (real)0) {
+      const real4 Rj = artificial_stress(p->eps_art, Nxx[j] / rj2, Nyy[j] / rj2, Nxy[j] / rj2);
+      const real f = sph_w(r, h) / p->w_spacing;
+      real fn = (real)1;
+      for (int k = 0; k < (int)p->n_art; ++k) fn *= f;
+      txx += fn * (Ri.x + Rj.x);
+      tyy += fn * (Ri.y + Rj.y);
+      txy += fn * (Ri.z + Rj.z);
     }
+    const real vdotr = (vxi - vx[j]) * dx + (vyi - vy[j]) * dy;
+    if (vdotr < (real)0 && (p->alpha_pi > (real)0 || p->beta_pi > (real)0)) {
+      const real mu = h * vdotr / (r2 + (real)0.01 * h * h);
+      const real pi = (-p->alpha_pi * p->sound_speed * mu + p->beta_pi * mu * mu) / ((real)0.5 * (rhoA[i] + rhoA[j]));
+      txx -= pi;
+      tyy -= pi;
+    }
+    accx += m[j] * (txx * gw.x + txy * gw.y);
+    accy += m[j] * (txy * gw.x + tyy * gw.y);
+  }
   ax[i] = accx;
   ay[i] = accy;
 }

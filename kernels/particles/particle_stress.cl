@@ -38,27 +38,22 @@ __kernel void particle_stress(__constant const ParticleParams* p, __constant con
   const real xi = x[i], yi = y[i], vxi = vx[i], vyi = vy[i];
   real g00 = 0, g01 = 0, g10 = 0, g11 = 0;  // sum V_j (v_j - v_i) (x) grad W
   real m00 = 0, m01 = 0, m10 = 0, m11 = 0;  // sum V_j (x_j - x_i) (x) grad W
-  const NeighbourCellRange cells = neighbour_cells_around(ng, xi, yi);
-  for (int cy = cells.y0; cy <= cells.y1; ++cy)
-    for (int cx = cells.x0; cx <= cells.x1; ++cx) {
-      const uint c = neighbour_cell_key(ng, cx, cy);
-      for (uint j = cell_start[c]; j < cell_end[c]; ++j) {
-        if (j == (uint)i) continue;
-        const real dx = xi - x[j], dy = yi - y[j], r2 = dx * dx + dy * dy;
-        if (r2 >= r2max) continue;
-        const real2 gw = sph_grad((real2)(dx, dy), h);
-        const real V = A[j];
-        const real du = vx[j] - vxi, dv = vy[j] - vyi;
-        g00 += V * du * gw.x;
-        g01 += V * du * gw.y;
-        g10 += V * dv * gw.x;
-        g11 += V * dv * gw.y;
-        m00 -= V * dx * gw.x;
-        m01 -= V * dx * gw.y;
-        m10 -= V * dy * gw.x;
-        m11 -= V * dy * gw.y;
-      }
-    }
+  FOR_EACH_NEARBY_PARTICLE(ng, cell_start, cell_end, xi, yi, j) {
+    if (j == (uint)i) continue;
+    const real dx = xi - x[j], dy = yi - y[j], r2 = dx * dx + dy * dy;
+    if (r2 >= r2max) continue;
+    const real2 gw = sph_grad((real2)(dx, dy), h);
+    const real V = A[j];
+    const real du = vx[j] - vxi, dv = vy[j] - vyi;
+    g00 += V * du * gw.x;
+    g01 += V * du * gw.y;
+    g10 += V * dv * gw.x;
+    g11 += V * dv * gw.y;
+    m00 -= V * dx * gw.x;
+    m01 -= V * dx * gw.y;
+    m10 -= V * dy * gw.x;
+    m11 -= V * dy * gw.y;
+  }
   // L = G M^-1 when M is well conditioned (det above 1e-3 of its value for a full support, ~1).
   real L00 = g00, L01 = g01, L10 = g10, L11 = g11;
   const real det = m00 * m11 - m01 * m10;

@@ -129,26 +129,29 @@ void FlowSolver::setInput(const FlowInput& in, double startTime) {
   if (settings_.twoPhase) setDebrisInput(in, h);
   time_ = startTime;
   // Every tile runs the first diagnostics, which finds the wet tiles.
-  std::vector<int> all(static_cast<std::size_t>(tilesX_) * tilesY_);
-  std::iota(all.begin(), all.end(), 0);
-  tileList_.write(all);
-  tileActive_.fill(1);
-  tileWet_.fill(0);
-  activeTiles_ = tileCount();
+  activateAllTiles();
   enqueueTrackMaxima();
   computeDiagnostics();
 }
 
-void FlowSolver::addFluid(
-    const std::function<void(compute::RealBuffer& h, compute::RealBuffer& qx, compute::RealBuffer& qy)>& add) {
-  add(h_, qx_, qy_);
+void FlowSolver::activateAllTiles() {
   std::vector<int> all(static_cast<std::size_t>(tilesX_) * tilesY_);
   std::iota(all.begin(), all.end(), 0);
   tileList_.write(all);
   tileActive_.fill(1);
   tileWet_.fill(0);
   activeTiles_ = tileCount();
+}
+
+void FlowSolver::addFluid(const FluidEdit& add) {
+  add(h_, qx_, qy_);
+  activateAllTiles();
   computeDiagnostics();
+}
+
+void FlowSolver::changeDischarge(const FluidEdit& change) {
+  change(h_, qx_, qy_);
+  computeDiagnostics();  // the wet tiles are unchanged: the active list still covers them
 }
 
 double FlowSolver::stableDt() const {

@@ -90,11 +90,15 @@ class FlowSolver {
   /// continues bitwise as if the run had not stopped.
   std::vector<char> saveState() const;
   void restoreState(const std::vector<char>& bytes, double time);
-  /// Adds fluid from outside the grid (water released by particles, spec §5 P.27-P.28): `add`
-  /// receives the device fields h, qx, qy and adds to them; then the diagnostics and the active tiles
-  /// are recomputed over every tile (the new fluid may lie in tiles that were dry). The outflow of
-  /// the last step stays what it was.
-  void addFluid(const std::function<void(compute::RealBuffer& h, compute::RealBuffer& qx, compute::RealBuffer& qy)>& add);
+  /// An edit of the device fields h, qx, qy from outside the solver.
+  using FluidEdit = std::function<void(compute::RealBuffer& h, compute::RealBuffer& qx, compute::RealBuffer& qy)>;
+  /// Adds fluid from outside the grid (water released by particles, spec §5 P.27-P.28); then the
+  /// diagnostics and the active tiles are recomputed over every tile (the new fluid may lie in tiles
+  /// that were dry). The outflow of the last step stays what it was.
+  void addFluid(const FluidEdit& add);
+  /// Changes only the discharge of wet cells (drag with particles); the diagnostics are recomputed
+  /// over the active tiles.
+  void changeDischarge(const FluidEdit& change);
   /// Slope-corrected gravities as uploaded (for tests).
   std::vector<double> gp() const { return gp_.download(); }
 
@@ -105,6 +109,8 @@ class FlowSolver {
   void enqueueFriction(double dt);
   void enqueueTrackMaxima();
   void computeDiagnostics();
+  /// Lists every tile as active, so the next diagnostics find the wet tiles anywhere.
+  void activateAllTiles();
   // Two-phase model (FlowSolverDebris.cpp).
   void buildDebris();
   void setDebrisInput(const FlowInput& in, const std::vector<double>& h);

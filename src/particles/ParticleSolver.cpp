@@ -286,33 +286,37 @@ void ParticleSolver::step(double dt) {
   updateDiagnostics();
 }
 
-std::vector<compute::RealBuffer*> ParticleSolver::stateFields() {
-  return {&x_, &y_, &vx_, &vy_, &m_, &rho_, &phi_, &delta_, &coh_, &coh0_, &sxx_, &syy_, &sxy_,
-          &plastic_, &A_, &V_, &fsc0_, &ffc0_, &Vf_, &Vf0_, &released_, &fluidDepth_};
+// Every per-particle field: reordered together at each neighbour build, saved in checkpoints.
+const std::vector<compute::RealBuffer ParticleSolver::*>& ParticleSolver::stateFields() {
+  using S = ParticleSolver;
+  static const std::vector<compute::RealBuffer S::*> fields = {
+      &S::x_,   &S::y_,   &S::vx_,  &S::vy_,     &S::m_,       &S::rho_,  &S::phi_,     &S::delta_,
+      &S::coh_, &S::coh0_, &S::sxx_, &S::syy_,   &S::sxy_,     &S::plastic_, &S::A_,    &S::V_,
+      &S::fsc0_, &S::ffc0_, &S::Vf_, &S::Vf0_,   &S::released_, &S::fluidDepth_};
+  return fields;
 }
 
 void ParticleSolver::reorderAll() {
-  for (compute::RealBuffer* f : stateFields()) neighbours_->reorder(*f);
+  for (auto f : stateFields()) neighbours_->reorder(this->*f);
 }
 
 std::vector<char> ParticleSolver::saveState() const {
-  auto* self = const_cast<ParticleSolver*>(this);  // stateFields() lists members; nothing is changed
   const uint64_t count = count_;
   std::vector<char> bytes(sizeof count + sizeof time_);
   std::memcpy(bytes.data(), &count, sizeof count);
   std::memcpy(bytes.data() + sizeof count, &time_, sizeof time_);
   const std::size_t each = count_ * compute::realSize(ctx_.precision());
-  for (const compute::RealBuffer* f : self->stateFields()) {
+  for (auto f : stateFields()) {
     const std::size_t at = bytes.size();
     bytes.resize(at + each);
-    if (each) f->raw().readBytes(bytes.data() + at, each);
+    if (each) (this->*f).raw().readBytes(bytes.data() + at, each);
   }
   return bytes;
 }
 
 void ParticleSolver::restoreState(const std::vector<char>& bytes) {
   uint64_t count = 0;
-  const std::vector<compute::RealBuffer*> fields = stateFields();
+  const auto& fields = stateFields();
   const std::size_t unit = compute::realSize(ctx_.precision());
   if (bytes.size() >= sizeof count + sizeof time_) std::memcpy(&count, bytes.data(), sizeof count);
   if (bytes.size() != sizeof count + sizeof time_ + fields.size() * count * unit || count > capacity_)
@@ -321,8 +325,8 @@ void ParticleSolver::restoreState(const std::vector<char>& bytes) {
   std::memcpy(&time_, bytes.data() + sizeof count, sizeof time_);
   count_ = count;
   std::size_t at = sizeof count + sizeof time_;
-  for (compute::RealBuffer* f : fields) {
-    if (count) f->raw().writeBytes(bytes.data() + at, count * unit);
+  for (auto f : fields) {
+    if (count) (this->*f).raw().writeBytes(bytes.data() + at, count * unit);
     at += count * unit;
   }
   writeParams();

@@ -117,7 +117,7 @@ class ParticleSolver {
   void writeParams();
   void reorderAll();
   void updateDiagnostics();
-  std::vector<compute::RealBuffer*> stateFields();
+  static const std::vector<compute::RealBuffer ParticleSolver::*>& stateFields();
 
   compute::Context& ctx_;
   Grid grid_;

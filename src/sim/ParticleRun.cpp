@@ -32,10 +32,14 @@ std::string ParticleRun::step(double dt, double time, flow::FlowSolver& flow) {
       releasedLast_ = solver_->releaseToGrid(h, qx, qy);
     });
   releasedTotal_ += releasedLast_;
-  // Drag with the free fluid, and the fluid depth at the particles for their friction.
-  flow.addFluid([&](compute::RealBuffer& h, compute::RealBuffer& qx, compute::RealBuffer& qy) {
-    solver_->exchangeWithFluid(h, qx, qy, dt);
-  });
+  // Drag with the free fluid, and the fluid depth at the particles for their friction: skipped while
+  // the grid holds no fluid (once more after it dried, to clear the depth the particles hold).
+  const bool wet = flow.diagnostics().volume > 0;
+  if (wet || fluidAtParticles_)
+    flow.changeDischarge([&](compute::RealBuffer& h, compute::RealBuffer& qx, compute::RealBuffer& qy) {
+      solver_->exchangeWithFluid(h, qx, qy, dt);
+    });
+  fluidAtParticles_ = wet;
   // A particle faster than the elastic wave speed times 10 (or NaN) means the explicit scheme has
   // blown up: no physical flow on a DEM gets there.
   if (!std::isfinite(d.maxSpeed) || !std::isfinite(d.kinetic)) {
@@ -47,7 +51,7 @@ std::string ParticleRun::step(double dt, double time, flow::FlowSolver& flow) {
 }
 
 std::vector<char> ParticleRun::saveState() const {
-  const double book[3] = {initialMass_, outflow_, releasedTotal_};
+  const double book[4] = {initialMass_, outflow_, releasedTotal_, fluidAtParticles_ ? 1.0 : 0.0};
   std::vector<char> bytes(sizeof book);
   std::memcpy(bytes.data(), book, sizeof book);
   const std::vector<char> s = solver_->saveState();
@@ -56,10 +60,10 @@ std::vector<char> ParticleRun::saveState() const {
 }
 
 void ParticleRun::restoreState(const std::vector<char>& bytes) {
-  double book[3];
+  double book[4];
   if (bytes.size() < sizeof book) throw InputError("checkpoint: the particle state is truncated");
   std::memcpy(book, bytes.data(), sizeof book);
-  initialMass_ = book[0], outflow_ = book[1], releasedTotal_ = book[2];
+  initialMass_ = book[0], outflow_ = book[1], releasedTotal_ = book[2], fluidAtParticles_ = book[3] != 0;
   solver_->restoreState(std::vector<char>(bytes.begin() + sizeof book, bytes.end()));
   cacheValid_ = false;
 }

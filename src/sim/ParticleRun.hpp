@@ -57,6 +57,7 @@ class ParticleRun : public ParticleView {
   const Raster& dem_;
   std::unique_ptr<particles::ParticleSolver> solver_;
   double initialMass_ = 0, outflow_ = 0, releasedLast_ = 0, releasedTotal_ = 0, fluidDensity_ = 1000;
+  bool fluidAtParticles_ = false;  ///< the particles hold a non-zero fluid depth from the last exchange
   // Host copy for viewers, refreshed lazily once per step.
   mutable particles::ParticleState cache_;
   mutable bool cacheValid_ = false;

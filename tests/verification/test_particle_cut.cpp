@@ -29,34 +29,48 @@ struct CutResult {
   std::size_t particles = 0;
 };
 
-/// A square column (8 x 8 cells of 0.5 m) of height H, c = 10 kPa, phi = 30 degrees, K = K_a, run
-/// for 2 s. spread: growth of the largest distance of a particle from the column's centre line.
-CutResult runColumn(double H) {
-  const double dx = 0.5, c = 1e4, phi = 30 * kDeg, rho = 2000.0;
-  const Grid g = Grid::make(40, 40, dx);
+constexpr double kCutDx = 0.5, kCutC = 1e4, kCutPhi = 30 * kDeg, kCutRho = 2000.0;
+
+/// A square column of 8 x 8 cells of 0.5 m and height H in the middle of an n x n flat grid: c = 10
+/// kPa, phi = delta = 30 degrees, rho 2000, K = K_a (constant), E = 10 MPa.
+struct ColumnScene {
+  Grid grid;
   ParticleTerrain terrain;
-  terrain.mask.assign(g.cells(), 1);
-  terrain.bed.assign(g.cells(), 0.0);
+  SeededParticles seeded;
+  ParticleMaterial material;
+  ParticleSettings settings;
+};
+
+ColumnScene columnScene(int n, double H) {
+  ColumnScene c;
+  c.grid = Grid::make(n, n, kCutDx);
+  c.terrain.mask.assign(c.grid.cells(), 1);
+  c.terrain.bed.assign(c.grid.cells(), 0.0);
   SeedInput in;
-  in.mask = terrain.mask;
-  in.bed = terrain.bed;
-  in.thickness.assign(g.cells(), 0.0);
-  in.density.assign(g.cells(), rho);
-  for (int j = 16; j < 24; ++j)
-    for (int i = 16; i < 24; ++i) in.thickness[g.index(i, j)] = H;
-  const SeededParticles seeded = seedParticles(g, in, SeedSpacing{0, 4});
-  ParticleMaterial mat;
-  mat.density = {rho};
-  mat.phi = {phi};
-  mat.delta = {phi};
-  mat.cohesion = {c};
-  ParticleSettings ps;
-  ps.youngModulus = 1e7;
-  ps.earthPressure = ParticleEarthPressure::Constant;
-  ps.kConst = (1 - std::sin(phi)) / (1 + std::sin(phi));
-  ParticleSolver solver(test::testContext(compute::Precision::Double), g, terrain, ps);
-  solver.setParticles(seeded, mat);
-  const double centre = 20 * dx;
+  in.mask = c.terrain.mask;
+  in.bed = c.terrain.bed;
+  in.thickness.assign(c.grid.cells(), 0.0);
+  in.density.assign(c.grid.cells(), kCutRho);
+  for (int j = n / 2 - 4; j < n / 2 + 4; ++j)
+    for (int i = n / 2 - 4; i < n / 2 + 4; ++i) in.thickness[c.grid.index(i, j)] = H;
+  c.seeded = seedParticles(c.grid, in, SeedSpacing{0, 4});
+  c.material.density = {kCutRho};
+  c.material.phi = {kCutPhi};
+  c.material.delta = {kCutPhi};
+  c.material.cohesion = {kCutC};
+  c.settings.youngModulus = 1e7;
+  c.settings.earthPressure = ParticleEarthPressure::Constant;
+  c.settings.kConst = (1 - std::sin(kCutPhi)) / (1 + std::sin(kCutPhi));
+  return c;
+}
+
+/// The column of columnScene(40, H), run for 2 s. spread: growth of the largest distance of a
+/// particle from the column's centre line.
+CutResult runColumn(double H) {
+  const ColumnScene c = columnScene(40, H);
+  ParticleSolver solver(test::testContext(compute::Precision::Double), c.grid, c.terrain, c.settings);
+  solver.setParticles(c.seeded, c.material);
+  const double centre = 20 * kCutDx;
   auto extent = [&](const ParticleState& s) {
     double e = 0;
     for (std::size_t q = 0; q < s.size(); ++q) e = std::max({e, std::fabs(s.x[q] - centre), std::fabs(s.y[q] - centre)});
@@ -108,36 +122,18 @@ TEST(ParticleCut, ShortColumnStandsTallColumnCollapses) {
 // round-off (double: sums of ~10^3 terms, 1e-12 relative); and mass: particles + rho_f x grid water
 // = the initial mass. Walls and a 30 m domain: nothing leaves.
 TEST(ParticleCut, ReleasedWaterReachesTheGridConserved) {
-  const double dx = 0.5, c = 1e4, phi = 30 * kDeg, rho = 2000.0, rhoF = 1000.0;
-  const double Ka = (1 - std::sin(phi)) / (1 + std::sin(phi));
-  const double H = 2 * 4 * c / (rho * kGravity * std::sqrt(Ka));
-  const Grid g = Grid::make(60, 60, dx);
-  ParticleTerrain terrain;
-  terrain.mask.assign(g.cells(), 1);
-  terrain.bed.assign(g.cells(), 0.0);
-  SeedInput in;
-  in.mask = terrain.mask;
-  in.bed = terrain.bed;
-  in.thickness.assign(g.cells(), 0.0);
-  in.density.assign(g.cells(), rho);
-  for (int j = 26; j < 34; ++j)
-    for (int i = 26; i < 34; ++i) in.thickness[g.index(i, j)] = H;
-  const SeededParticles seeded = seedParticles(g, in, SeedSpacing{0, 4});
-  ParticleMaterial mat;
-  mat.density = {rho};
-  mat.phi = {phi};
-  mat.delta = {phi};
-  mat.cohesion = {c};
-  mat.fluidVolume = seeded.volume;
-  for (double& v : mat.fluidVolume) v *= 0.5;
-  ParticleSettings ps;
-  ps.youngModulus = 1e7;
-  ps.earthPressure = ParticleEarthPressure::Constant;
-  ps.kConst = Ka;
-  ps.fluidDensity = rhoF;
+  const double rhoF = 1000.0;
+  const double Ka = (1 - std::sin(kCutPhi)) / (1 + std::sin(kCutPhi));
+  ColumnScene c = columnScene(60, 2 * 4 * kCutC / (kCutRho * kGravity * std::sqrt(Ka)));
+  const Grid& g = c.grid;
+  const ParticleTerrain& terrain = c.terrain;
+  const double dx = kCutDx;
+  c.material.fluidVolume = c.seeded.volume;
+  for (double& v : c.material.fluidVolume) v *= 0.5;
+  c.settings.fluidDensity = rhoF;
   compute::Context& ctx = test::testContext(compute::Precision::Double);
-  ParticleSolver particles(ctx, g, terrain, ps);
-  particles.setParticles(seeded, mat);
+  ParticleSolver particles(ctx, g, terrain, c.settings);
+  particles.setParticles(c.seeded, c.material);
   flow::FlowSettings fs;
   fs.edge = flow::Boundary::Wall;
   flow::FlowSolver fluid(ctx, g, fs);

@@ -101,7 +101,7 @@ TEST(ParticleFluid, DragConservesMomentumAndRelaxesAtTheClosureRate) {
     flow::FlowSolver fluid(ctx, c.grid, fs);
     fluid.setInput(c.fluid);
     const double before = momentumX(particles.state()) + rhoF * sum(fluid.qx());
-    fluid.addFluid([&](compute::RealBuffer& h, compute::RealBuffer& qx, compute::RealBuffer& qy) {
+    fluid.changeDischarge([&](compute::RealBuffer& h, compute::RealBuffer& qx, compute::RealBuffer& qy) {
       particles.exchangeWithFluid(h, qx, qy, dt);
     });
     const ParticleState s = particles.state();
@@ -149,7 +149,7 @@ TEST(ParticleFluid, BuoyancyReducesTheBasalFriction) {
     flow::FlowSettings fs;
     flow::FlowSolver fluid(ctx, c.grid, fs);
     fluid.setInput(c.fluid);
-    fluid.addFluid([&](compute::RealBuffer& h, compute::RealBuffer& qx, compute::RealBuffer& qy) {
+    fluid.changeDischarge([&](compute::RealBuffer& h, compute::RealBuffer& qx, compute::RealBuffer& qy) {
       particles.exchangeWithFluid(h, qx, qy, 0.01);
     });
     const double T = 0.5;
