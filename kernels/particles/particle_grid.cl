@@ -150,6 +150,23 @@ inline int pg_block_weights(const PgBlock* k, real xp, real yp, int nx, int ny, 
   return any;
 }
 
+/// pg_block_weights for a particle inside the block's reach (the cheap pre-filter first), else 0.
+inline int pg_particle_weights(const PgBlock* k, real xp, real yp, int nx, int ny, real dx, real* w) {
+  if (xp <= k->reach.s0 || xp >= k->reach.s1 || yp <= k->reach.s2 || yp >= k->reach.s3) return 0;
+  return pg_block_weights(k, xp, yp, nx, ny, dx, w);
+}
+
+/// Visits the particles p (uint, sorted index) of the neighbour cells of block k that weigh on it,
+/// with their weights w[PG_BLOCK * PG_BLOCK] (declared here), in the fixed order of the tables:
+///   PG_FOR_EACH_PARTICLE(k, ng, cell_start, cell_end, x, y, nx, ny, dx, p, w) { ... }
+#define PG_FOR_EACH_PARTICLE(k, ng, start, end, x, y, nx, ny, dx, p, w)                                    \
+  for (int pg_cy = (k).cells.y0; pg_cy <= (k).cells.y1; ++pg_cy)                                           \
+    for (int pg_cx = (k).cells.x0; pg_cx <= (k).cells.x1; ++pg_cx)                                         \
+      for (uint p = start[neighbour_cell_key(ng, pg_cx, pg_cy)], pg_end = end[neighbour_cell_key(ng, pg_cx, pg_cy)]; \
+           p < pg_end; ++p)                                                                              \
+        for (real w[PG_BLOCK * PG_BLOCK], *pg_ok = pg_particle_weights(&(k), x[p], y[p], nx, ny, dx, w) ? w : 0; \
+             pg_ok; pg_ok = 0)
+
 /// P2G of two particle weights and a momentum-like pair, for every terrain cell c:
 ///   out_a[c]  = scale_a sum_p w_pc a_p,
 ///   out_b[c]  = scale_b sum_p w_pc b_p,
@@ -169,25 +186,17 @@ __kernel void particles_to_grid(const int nx, const int ny, const real dx, __con
   if (k.ni == 0) return;
   real sa[PG_BLOCK * PG_BLOCK], sb[PG_BLOCK * PG_BLOCK], sbu[PG_BLOCK * PG_BLOCK], sbv[PG_BLOCK * PG_BLOCK];
   for (int q = 0; q < PG_BLOCK * PG_BLOCK; ++q) sa[q] = sb[q] = sbu[q] = sbv[q] = (real)0;
-  for (int cy = k.cells.y0; cy <= k.cells.y1; ++cy)
-    for (int cx = k.cells.x0; cx <= k.cells.x1; ++cx) {
-      const uint key = neighbour_cell_key(ng, cx, cy);
-      for (uint p = cell_start[key]; p < cell_end[key]; ++p) {
-        const real xp = x[p], yp = y[p];
-        if (xp <= k.reach.s0 || xp >= k.reach.s1 || yp <= k.reach.s2 || yp >= k.reach.s3) continue;
-        real w[PG_BLOCK * PG_BLOCK];
-        if (!pg_block_weights(&k, xp, yp, nx, ny, dx, w)) continue;
-        const real ap = a[p], bp = b[p], up = u[p], vp = v[p];
-        for (int q = 0; q < PG_BLOCK * PG_BLOCK; ++q) {
-          if (w[q] == (real)0) continue;
-          const real wb = w[q] * bp;
-          sa[q] += w[q] * ap;
-          sb[q] += wb;
-          sbu[q] += wb * up;
-          sbv[q] += wb * vp;
-        }
-      }
+  PG_FOR_EACH_PARTICLE(k, ng, cell_start, cell_end, x, y, nx, ny, dx, p, w) {
+    const real ap = a[p], bp = b[p], up = u[p], vp = v[p];
+    for (int q = 0; q < PG_BLOCK * PG_BLOCK; ++q) {
+      if (w[q] == (real)0) continue;
+      const real wb = w[q] * bp;
+      sa[q] += w[q] * ap;
+      sb[q] += wb;
+      sbu[q] += wb * up;
+      sbv[q] += wb * vp;
     }
+  }
   for (int r = 0; r < k.nj; ++r)
     for (int m = 0; m < k.ni; ++m) {
       const int c = (k.j0 + r) * nx + k.i0 + m, q = r * PG_BLOCK + m;
@@ -210,23 +219,15 @@ __kernel void particles_field_to_grid(const int nx, const int ny, const real dx,
   if (k.ni == 0) return;
   real sq[PG_BLOCK * PG_BLOCK], sqf[PG_BLOCK * PG_BLOCK];
   for (int t = 0; t < PG_BLOCK * PG_BLOCK; ++t) sq[t] = sqf[t] = (real)0;
-  for (int cy = k.cells.y0; cy <= k.cells.y1; ++cy)
-    for (int cx = k.cells.x0; cx <= k.cells.x1; ++cx) {
-      const uint key = neighbour_cell_key(ng, cx, cy);
-      for (uint p = cell_start[key]; p < cell_end[key]; ++p) {
-        const real xp = x[p], yp = y[p];
-        if (xp <= k.reach.s0 || xp >= k.reach.s1 || yp <= k.reach.s2 || yp >= k.reach.s3) continue;
-        real w[PG_BLOCK * PG_BLOCK];
-        if (!pg_block_weights(&k, xp, yp, nx, ny, dx, w)) continue;
-        const real qp = q[p], fp = f[p];
-        for (int t = 0; t < PG_BLOCK * PG_BLOCK; ++t) {
-          if (w[t] == (real)0) continue;
-          const real wq = w[t] * qp;
-          sq[t] += wq;
-          sqf[t] += wq * fp;
-        }
-      }
+  PG_FOR_EACH_PARTICLE(k, ng, cell_start, cell_end, x, y, nx, ny, dx, p, w) {
+    const real qp = q[p], fp = f[p];
+    for (int t = 0; t < PG_BLOCK * PG_BLOCK; ++t) {
+      if (w[t] == (real)0) continue;
+      const real wq = w[t] * qp;
+      sq[t] += wq;
+      sqf[t] += wq * fp;
     }
+  }
   for (int r = 0; r < k.nj; ++r)
     for (int m = 0; m < k.ni; ++m) {
       const int c = (k.j0 + r) * nx + k.i0 + m, t = r * PG_BLOCK + m;

@@ -1,5 +1,6 @@
-// Internal to src/io: GDAL registration and the collection of GDAL's error messages for our
-// exceptions (the only files that include GDAL are in src/io).
+// Internal to src/io: GDAL registration, the collection of GDAL's error messages for our exceptions
+// (the only files that include GDAL are in src/io), and the process id that names temporary files
+// of atomic writes.
 #pragma once
 #include <cpl_error.h>
 #include <gdal.h>
@@ -7,7 +8,22 @@
 #include <mutex>
 #include <string>
 
+#ifdef _WIN32
+#include <process.h>
+#else
+#include <unistd.h>
+#endif
+
 namespace talus::io::detail {
+
+/// This process's id, for the names of temporary files (name.tmp-PID).
+inline long processId() {
+#ifdef _WIN32
+  return static_cast<long>(_getpid());
+#else
+  return static_cast<long>(getpid());
+#endif
+}
 
 /// Registers GDAL's drivers once per process.
 inline void ensureGdalRegistered() {

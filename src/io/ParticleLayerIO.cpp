@@ -24,14 +24,6 @@
 #include <stdexcept>
 #include <system_error>
 
-#ifdef _WIN32
-#include <process.h>
-#define TALUS_GETPID _getpid
-#else
-#include <unistd.h>
-#define TALUS_GETPID getpid
-#endif
-
 #include "io/GdalErrors.hpp"
 #include "core/Error.hpp"
 
@@ -87,7 +79,7 @@ void checkRecords(const std::string& path, const ParticleRecords& records, const
 /// driver expects, and its ".tmp-" marks it for the clean-up of `talus run --resume`.
 std::string temporaryPathFor(const std::string& path) {
   const fs::path p(path);
-  const std::string name = p.stem().string() + ".tmp-" + std::to_string(static_cast<long>(TALUS_GETPID())) + ".gpkg";
+  const std::string name = p.stem().string() + ".tmp-" + std::to_string(detail::processId()) + ".gpkg";
   return (p.parent_path() / name).string();
 }
 

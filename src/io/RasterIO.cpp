@@ -21,14 +21,6 @@
 #include <system_error>
 #include <vector>
 
-#ifdef _WIN32
-#include <process.h>
-#define TALUS_GETPID _getpid
-#else
-#include <unistd.h>
-#define TALUS_GETPID getpid
-#endif
-
 #include "io/GdalErrors.hpp"
 #include "core/Error.hpp"
 
@@ -303,7 +295,7 @@ void writeRaster(const std::string& path, const Raster& r, RasterFormat format, 
                      "' does not exist or is not a folder");
   }
 
-  const std::string tmpPath = path + ".tmp-" + std::to_string(static_cast<long>(TALUS_GETPID()));
+  const std::string tmpPath = path + ".tmp-" + std::to_string(detail::processId());
   const std::string tmpAux = tmpPath + ".aux.xml";
   GdalErrorScope errors;
   try {
