@@ -36,7 +36,7 @@ void debris_tile_diagnostics(__constant const FlowParams* p, __constant const De
     const real rho_s = hs > p->h_dry ? S[4 * n + k] / hs : dp->rho_s_default;
     const real phi = hs > p->h_dry ? S[3 * n + k] / hs : dp->phi_default;
     const real K = dp->earth_pressure == EARTH_CONSTANT ? dp->k_const
-                                                        : earth_pressure(phi, dp->delta_from_phi ? phi : delta[k], 1);
+                                                        : earth_pressure(phi, dp->delta_from_phi ? phi : delta[k], (real)1);
     const real area = p->dx * p->dx;
     speed = H > (real)0 ? fmax(fabs(us) + fabs(vs), fabs(uf) + fabs(vf)) +
                               (real)2 * (sqrt(GRAVITY * H * fmax((real)1, K)) + slope_speed[k])

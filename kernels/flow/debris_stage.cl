@@ -15,6 +15,14 @@
 //   fluid; friction can stop motion but never reverse it.
 // Viscous stress of the fluid (P.30, compiled in with -DDEBRIS_VISCOUS=1): face fluxes of
 //   debris_viscous.cl added to the fluid momentum fluxes.
+// Particle bed (hybrid mode, compiled in with -DDEBRIS_OBSTACLE=1; spec §6): the confined phase of the
+//   particles, transferred to the grid (thickness H_c and velocity u_c per cell, `pbed`), is part of
+//   both phases' bed: the fluid flows over b + H_c + h_s, the solids over b + H_c, so water and loose
+//   material flow around or over the blocks. The forces this bed exerts on the grid phases come back
+//   to the particles as an impulse per cell (`impulse`, momentum per area over the step): the
+//   hydrostatic-reconstruction and bed-slope forces of the fluid, the bed-slope force of the solids
+//   (the parts due to H_c) and the basal friction of solids resting on moving particles (Coulomb
+//   friction acts on the velocity relative to u_c). See docs/particles.md, "Particles as bed".
 // Static solids: a cell whose solid motion friction stopped in the last stage is "locked"; no solid
 //   mass crosses a face between two locked (or empty) cells, so material at rest whose driving force
 //   stays below friction does not creep by numerical diffusion; pressure still acts, so a pile that
@@ -28,7 +36,25 @@
 #include "flow/debris_viscous.cl"
 #endif
 
+#ifndef DEBRIS_OBSTACLE
+#define DEBRIS_OBSTACLE 0
+#endif
+
 #define NSOLID 6  // solid state components: h_s, q_sx, q_sy, h_s phi, h_s rho_s, h_s d
+
+/// The bed the grid phases see: the DEM, plus the particles' confined thickness in hybrid mode.
+#if DEBRIS_OBSTACLE
+#define BED(k) (b[k] + pbed[k])
+#else
+#define BED(k) (b[k])
+#endif
+
+/// Share of the bed step between cells k (higher) and o that the particles make: the part of the
+/// fluid-bed difference B_k - B_o due to H_c, in [0, 1]; 0 unless cell k holds particles.
+inline real particle_share(real dHc, real dB, real Hc_k) {
+  if (!(Hc_k > (real)0) || !(dB > (real)0)) return (real)0;
+  return clamp(dHc / dB, (real)0, (real)1);
+}
 
 /// Primitive state of one cell along a direction: solids and fluid. The solids reconstruct the bed b
 /// itself (its faces then give the solid surface e_s = b + h_s), so the bed-slope force of a cell at
@@ -36,6 +62,7 @@
 typedef struct {
   real hs, es, us, vs;  // solid thickness, bed b (primitive) / solid surface b + h_s (faces), velocities
   real hf, ef, uf, vf;  // fluid thickness, mixture surface b + h_s + h_f, velocities
+  real hc;              // particle bed H_c (hybrid mode; 0 otherwise)
 } Prim2;
 
 typedef struct {
@@ -44,29 +71,38 @@ typedef struct {
 
 inline Prim2 load_prim2(__constant const FlowParams* p, __constant const DebrisParams* dp, __global const real* S,
                         __global const real* hf, __global const real* qfx, __global const real* qfy,
-                        __global const real* b, int k, int n, int dir) {
+                        __global const real* b, __global const real* pbed, int k, int n, int dir) {
   Prim2 c;
   c.hs = S[k];
-  c.es = b[k];
+  c.es = BED(k);
+#if DEBRIS_OBSTACLE
+  c.hc = pbed[k];
+#else
+  c.hc = 0;
+#endif
   const real us = solid_velocity(c.hs, S[n + k], p->h_dry, dp->film_h), vs = solid_velocity(c.hs, S[2 * n + k], p->h_dry, dp->film_h);
   c.us = dir == 0 ? us : vs;
   c.vs = dir == 0 ? vs : us;
   c.hf = hf[k];
-  c.ef = b[k] + c.hs + c.hf;
+  c.ef = c.es + c.hs + c.hf;
   const real uf = velocity(c.hf, qfx[k], p->h_dry), vf = velocity(c.hf, qfy[k], p->h_dry);
   c.uf = dir == 0 ? uf : vf;
   c.vf = dir == 0 ? vf : uf;
   return c;
 }
 
-/// MUSCL reconstruction of both phases of cell c (zero slopes next to outside cells).
+/// MUSCL reconstruction of both phases of cell c (zero slopes next to outside cells). The fluid is
+/// first order on and next to the particle bed: its bed is then flat within each cell, so every bed
+/// force on the fluid there is a face correction that the particles take in full (no bed slope
+/// inside a cell without particles, which nothing could take the reaction of).
 inline Faces2 reconstruct2(Prim2 m, int m_in, Prim2 c, Prim2 p, int p_in) {
   const Prim s0 = {c.hs, c.es, c.us, c.vs}, sm = {m.hs, m.es, m.us, m.vs}, sp = {p.hs, p.es, p.us, p.vs};
   const Prim f0 = {c.hf, c.ef, c.uf, c.vf}, fm = {m.hf, m.ef, m.uf, m.vf}, fp = {p.hf, p.ef, p.uf, p.vf};
-  const CellFaces s = reconstruct(sm, m_in, s0, sp, p_in), f = reconstruct(fm, m_in, f0, fp, p_in);
+  const int on_bed = c.hc > (real)0 || (m_in && m.hc > (real)0) || (p_in && p.hc > (real)0);
+  const CellFaces s = reconstruct(sm, m_in, s0, sp, p_in), f = reconstruct(fm, m_in && !on_bed, f0, fp, p_in && !on_bed);
   Faces2 r;
-  r.lo = (Prim2){s.h_lo, s.h_lo + s.e_lo, s.un_lo, s.ut_lo, f.h_lo, f.e_lo, f.un_lo, f.ut_lo};
-  r.hi = (Prim2){s.h_hi, s.h_hi + s.e_hi, s.un_hi, s.ut_hi, f.h_hi, f.e_hi, f.un_hi, f.ut_hi};
+  r.lo = (Prim2){s.h_lo, s.h_lo + s.e_lo, s.un_lo, s.ut_lo, f.h_lo, f.e_lo, f.un_lo, f.ut_lo, c.hc};
+  r.hi = (Prim2){s.h_hi, s.h_hi + s.e_hi, s.un_hi, s.ut_hi, f.h_hi, f.e_hi, f.un_hi, f.ut_hi, c.hc};
   return r;
 }
 
@@ -162,6 +198,7 @@ __kernel void debris_stage(__constant const FlowParams* p, __constant const Debr
                            __global const uchar* mask, __global const int* tile_list, __global const real* b,
                            __global const real* gp, __global const real* gn, __global const real* manning,
                            __global const real* delta, __global const real* cohesion,
+                           __global const real* pbed, __global real* impulse,
                            __global const real* S_base, __global const real* hf_base, __global const real* qfx_base,
                            __global const real* qfy_base, __global const real* S_st, __global const real* hf_st,
                            __global const real* qfx_st, __global const real* qfy_st, __global const uchar* lock_st,
@@ -180,24 +217,30 @@ __kernel void debris_stage(__constant const FlowParams* p, __constant const Debr
   real dS[NSOLID] = {0, 0, 0, 0, 0, 0};
   real dhf = 0, dqf[2] = {0, 0}, out_s = 0, out_f = 0;
   real mass_s[2], mass_f[2], norm_s[2], norm_f[2], tang_s[2], tang_f[2], sc_flux[3][2];
+#if DEBRIS_OBSTACLE
+  // Force of the grid phases on the particles of this cell, per unit area and without dt/dx:
+  // fluid part per unit fluid density, solid part in kg (times rho_s already).
+  real react_f[2] = {0, 0}, react_s[2] = {0, 0};
+  const real Hc_k = pbed[k];
+#endif
   for (int dir = 0; dir < 2; ++dir) {
     const int di = dir == 0, dj = dir == 1;
     const int m_in = cell_inside(p, mask, i - di, j - dj), p_in = cell_inside(p, mask, i + di, j + dj);
     const int km = m_in ? cell_index(p, i - di, j - dj) : k, kp = p_in ? cell_index(p, i + di, j + dj) : k;
     // Reconstructions of this cell and of its two neighbours along dir (each from its own neighbours).
-    const Prim2 c0 = load_prim2(p, dp, S_st, hf_st, qfx_st, qfy_st, b, k, n, dir);
-    const Prim2 cm = load_prim2(p, dp, S_st, hf_st, qfx_st, qfy_st, b, km, n, dir);
-    const Prim2 cp = load_prim2(p, dp, S_st, hf_st, qfx_st, qfy_st, b, kp, n, dir);
+    const Prim2 c0 = load_prim2(p, dp, S_st, hf_st, qfx_st, qfy_st, b, pbed, k, n, dir);
+    const Prim2 cm = load_prim2(p, dp, S_st, hf_st, qfx_st, qfy_st, b, pbed, km, n, dir);
+    const Prim2 cp = load_prim2(p, dp, S_st, hf_st, qfx_st, qfy_st, b, pbed, kp, n, dir);
     const Faces2 own = reconstruct2(cm, m_in, c0, cp, p_in);
     Faces2 fm_cell = own, fp_cell = own;
     if (m_in) {
       const int mm_in = cell_inside(p, mask, i - 2 * di, j - 2 * dj);
-      const Prim2 cmm = mm_in ? load_prim2(p, dp, S_st, hf_st, qfx_st, qfy_st, b, cell_index(p, i - 2 * di, j - 2 * dj), n, dir) : cm;
+      const Prim2 cmm = mm_in ? load_prim2(p, dp, S_st, hf_st, qfx_st, qfy_st, b, pbed, cell_index(p, i - 2 * di, j - 2 * dj), n, dir) : cm;
       fm_cell = reconstruct2(cmm, mm_in, cm, c0, 1);
     }
     if (p_in) {
       const int pp_in = cell_inside(p, mask, i + 2 * di, j + 2 * dj);
-      const Prim2 cpp = pp_in ? load_prim2(p, dp, S_st, hf_st, qfx_st, qfy_st, b, cell_index(p, i + 2 * di, j + 2 * dj), n, dir) : cp;
+      const Prim2 cpp = pp_in ? load_prim2(p, dp, S_st, hf_st, qfx_st, qfy_st, b, pbed, cell_index(p, i + 2 * di, j + 2 * dj), n, dir) : cp;
       fp_cell = reconstruct2(c0, 1, cp, cpp, pp_in);
     }
     const int kind_m = boundary_kind(p, i - di, j - dj), kind_p = boundary_kind(p, i + di, j + dj);
@@ -219,9 +262,9 @@ __kernel void debris_stage(__constant const FlowParams* p, __constant const Debr
     if (dp->earth_pressure == EARTH_CONSTANT) {
       Km = Kc = Kp = dp->k_const;
     } else {
-      Km = earth_pressure(mm.phi, mm.delta, fm_cell.hi.us - fm_cell.lo.us < (real)0);
-      Kc = earth_pressure(mc.phi, mc.delta, own.hi.us - own.lo.us < (real)0);
-      Kp = earth_pressure(mp.phi, mp.delta, fp_cell.hi.us - fp_cell.lo.us < (real)0);
+      Km = earth_pressure(mm.phi, mm.delta, passive_share(fm_cell.hi.us - fm_cell.lo.us, p->dx, gn[km], cm.hs + cm.hf));
+      Kc = earth_pressure(mc.phi, mc.delta, passive_share(own.hi.us - own.lo.us, p->dx, gnk, c0.hs + c0.hf));
+      Kp = earth_pressure(mp.phi, mp.delta, passive_share(fp_cell.hi.us - fp_cell.lo.us, p->dx, gn[kp], cp.hs + cp.hf));
     }
     const SolidSide smL = {fm_cell.hi.hs, fm_cell.hi.es, fm_cell.hi.us, fm_cell.hi.vs,
                            lateral_pressure(Km, mm, gm, fm_cell.hi.hs + fm_cell.hi.hf)};
@@ -238,8 +281,25 @@ __kernel void debris_stage(__constant const FlowParams* p, __constant const Debr
     mass_s[dir] = Sp.fh - Sm.fh;
     // Fluid normal momentum: as the single-phase stage, over the bed b + h_s.
     real sf = (Fp.fqn + g * (Fp.p + Fp.corr_m)) - (Fm.fqn + g * (Fm.p + Fm.corr_p));
+#if DEBRIS_OBSTACLE
+    {
+      // The fluid's bed force on this cell's bed, from the face corrections of the neighbours'
+      // fluid (a step up into this cell pushes their fluid away and this cell's bed on) and from
+      // this cell's own fluid on its bed slope (below): the part the particles make of each step.
+      const real Bk = c0.ef - c0.hf, Bm = cm.ef - cm.hf, Bp = cp.ef - cp.hf;
+      if (m_in) react_f[dir] += gm * Fm.corr_m * particle_share(Hc_k - pbed[km], Bk - Bm, Hc_k);
+      if (p_in) react_f[dir] -= gpp * Fp.corr_p * particle_share(Hc_k - pbed[kp], Bk - Bp, Hc_k);
+    }
+#endif
     if (c0.hf > (real)0) {
-      sf += g * (real)0.5 * (own.lo.hf + own.hi.hf) * ((own.hi.ef - own.hi.hf) - (own.lo.ef - own.lo.hf));
+      const real bed_force = g * (real)0.5 * (own.lo.hf + own.hi.hf) * ((own.hi.ef - own.hi.hf) - (own.lo.ef - own.lo.hf));
+      sf += bed_force;
+#if DEBRIS_OBSTACLE
+      if (Hc_k > (real)0 && m_in && p_in) {
+        const real dB = (cp.ef - cp.hf) - (cm.ef - cm.hf), dH = pbed[kp] - pbed[km];
+        react_f[dir] += bed_force * (dB * dH > (real)0 ? fmin(dH / dB, (real)1) : (real)0);
+      }
+#endif
       const real dg = g - gnk;
       if (dg != (real)0 && m_in && p_in) sf -= dg * c0.hf * (real)0.5 * (b[kp] - b[km]);
     }
@@ -265,14 +325,19 @@ __kernel void debris_stage(__constant const FlowParams* p, __constant const Debr
       // potential energy (seen: 0.5 m of solids at 158 m/s in a 3 m deep DEM pit; solids on the
       // rim of a filled 18 m pit accelerating at 12 g). Moving neighbours never block (the rear of
       // a sliding mass is pulled down with it), nor do lower surfaces (fronts, dry slopes).
-      const real slope = span * (b[kp] - b[km]);
+      const real slope = span * (BED(kp) - BED(km));
       const int down_in = slope > (real)0 ? m_in : p_in;
       const int down_k = slope > (real)0 ? km : kp;
       const int down_kind = slope > (real)0 ? kind_m : kind_p;
-      const real top = b[k] + c0.hs;
-      const int blocked = down_in ? b[down_k] > top || (lock_st[down_k] && b[down_k] + fmax(S_st[down_k], (real)0) >= top)
+      const real top = BED(k) + c0.hs;
+      const int blocked = down_in ? BED(down_k) > top || (lock_st[down_k] && BED(down_k) + fmax(S_st[down_k], (real)0) >= top)
                                   : down_kind == BOUNDARY_WALL;
       if (!blocked) ss += gnk * c0.hs * slope;
+#if DEBRIS_OBSTACLE
+      // (also next to the particles, where the centred gradient reaches: particle_bed.cl passes
+      // that impulse on to the neighbouring cells with particles)
+      if (!blocked) react_s[dir] += mc.rho_s * gnk * c0.hs * span * (pbed[kp] - pbed[km]);
+#endif
       ss += mc.gamma * g * c0.hs * span * ((cp.hs + cp.hf) - (cm.hs + cm.hf));
     }
     norm_f[dir] = sf;
@@ -334,18 +399,23 @@ __kernel void debris_stage(__constant const FlowParams* p, __constant const Debr
   mn.delta = dp->delta_from_phi ? mn.phi : delta[k];
   // Coulomb friction first: it decides whether the solids are held; then the drag exchange, in
   // which held solids stay at rest (the bed takes the reaction).
+  // The bed moves where the solids rest on particles (hybrid mode): friction acts on the velocity
+  // relative to the particles' u_c, and solids carried along are not static.
+#if DEBRIS_OBSTACLE
+  const real ucx = Hc_k > (real)0 ? pbed[n + k] : (real)0, ucy = Hc_k > (real)0 ? pbed[2 * n + k] : (real)0;
+  const real qs_before[2] = {qs[0], qs[1]};
+#else
+  const real ucx = 0, ucy = 0;
+#endif
   uchar locked = 1;
   if (hsn > p->h_dry) {
-    const real qn = sqrt(qs[0] * qs[0] + qs[1] * qs[1]);
-    const real impulse = ds * tan(mn.delta) * ((real)1 - dp->pore_b * mn.gamma) * gnk * hsn;
-    if (qn <= impulse) {
-      qs[0] = qs[1] = 0;
-    } else {
-      const real f = (real)1 - impulse / qn;
-      qs[0] *= f;
-      qs[1] *= f;
-      locked = 0;
-    }
+    const real rx = qs[0] - hsn * ucx, ry = qs[1] - hsn * ucy;
+    const real qn = sqrt(rx * rx + ry * ry);
+    const real fric = ds * tan(mn.delta) * ((real)1 - dp->pore_b * mn.gamma) * gnk * hsn;
+    const real f = qn <= fric ? (real)0 : (real)1 - fric / qn;
+    qs[0] = hsn * ucx + f * rx;
+    qs[1] = hsn * ucy + f * ry;
+    locked = f == (real)0 && ucx == (real)0 && ucy == (real)0;
   }
   if (dp->drag_law != DRAG_OFF && hsn > p->h_dry && hfn > p->h_dry)
     drag_relax(dp, mn, hsn, hfn, qs, qf, ds, locked);
@@ -369,6 +439,18 @@ __kernel void debris_stage(__constant const FlowParams* p, __constant const Debr
   qfx_out[k] = qf[0];
   qfy_out[k] = qf[1];
   lock_out[k] = locked;
+#if DEBRIS_OBSTACLE
+  {
+    // Impulse on the particles over the step: the face and bed forces with the stage weight dt/2,
+    // the friction change of stage 1 with 1/2 (it reaches the end state through U1/2), of stage 2
+    // with 1. Where the cell holds particles they are the bed, so the solids' basal friction acts
+    // on them (whether they move or not); elsewhere it acts on the DEM.
+    const real wr = w_out / p->dx, wfric = Hc_k > (real)0 ? (first_stage ? (real)0.5 : (real)1) : (real)0;
+    const real rho = mn.rho_s;
+    impulse[k] += wr * (dp->rho_f * react_f[0] + react_s[0]) - wfric * rho * (qs[0] - qs_before[0]);
+    impulse[n + k] += wr * (dp->rho_f * react_f[1] + react_s[1]) - wfric * rho * (qs[1] - qs_before[1]);
+  }
+#endif
   const real wf = w_out * p->dx;
   if (first_stage) {
     out_step[k] = wf * out_f;

@@ -48,6 +48,9 @@ struct FlowSettings {
   bool slopeCorrection = true;      ///< g_n = g cos^2(theta) (spec §1); off: g everywhere
   DepthPressure depthPressure = DepthPressure::Cos2;  ///< g_p = g cos^2 (default) or g cos^4
   bool twoPhase = false;            ///< solids on the grid (grid mode of spec §3); false: water only
+  /// Hybrid mode (two-phase only): the particles' confined phase is part of both phases' bed and
+  /// takes the reaction of the grid's bed forces (FlowSolver::particleBed(), bedImpulse()).
+  bool particleBed = false;
   DebrisSettings debris;
 };
 

@@ -70,6 +70,7 @@ FlowSolver::FlowSolver(compute::Context& ctx, const Grid& grid, const FlowSettin
       reducer_(ctx) {
   if (grid.nx < 1 || grid.ny < 1 || !(grid.dx > 0)) throw InputError("flow solver needs a grid of at least 1x1 cells");
   if (!(settings.cfl > 0 && settings.cfl <= 0.5)) throw InputError("CFL must lie in (0, 0.5] (positivity)");
+  if (settings.particleBed && !settings.twoPhase) throw InputError("the particle bed needs the two-phase grid model");
   const std::string opts = buildOptions(settings);
   stage_ = compute::Kernel(ctx.program("flow/stage.cl", opts), "flow_stage");
   friction_ = compute::Kernel(ctx.program("flow/friction.cl", opts), "flow_friction");
@@ -259,6 +260,11 @@ void FlowSolver::restoreState(const std::vector<char>& bytes, double time) {
   activeTiles_ = tileCount();
   outStep_.fill(0.0);
   computeDiagnostics();
+}
+
+std::map<std::string, cl_mem> FlowSolver::viewBuffers() const {
+  return {{"h", h_.mem()},       {"qx", qx_.mem()},     {"qy", qy_.mem()},
+          {"hMax", hMax_.mem()}, {"vMax", vMax_.mem()}, {"arrival", arrival_.mem()}};
 }
 
 compute::Range FlowSolver::tileRange() const {

@@ -6,6 +6,8 @@
 #pragma once
 #include <cstdint>
 #include <functional>
+#include <map>
+#include <string>
 #include <vector>
 
 #include "compute/Buffer.hpp"
@@ -99,6 +101,16 @@ class FlowSolver {
   /// Changes only the discharge of wet cells (drag with particles); the diagnostics are recomputed
   /// over the active tiles.
   void changeDischarge(const FluidEdit& change);
+  /// Hybrid mode (FlowSettings::particleBed): the particles' confined phase as the grid sees it,
+  /// 3 x cells (H_c [m], then u_c and v_c [m/s]), written by the particle run before each step; and
+  /// the impulse the grid phases gave it in the last step, 2 x cells (x, y, momentum per area
+  /// [kg m^-1 s^-1]). Placeholders of one value in grid mode.
+  compute::RealBuffer& particleBed() { return particleBed_; }
+  const compute::RealBuffer& bedImpulse() const { return bedImpulse_; }
+  /// The device fields a viewer may read without a host copy (sim::ViewFields::setDeviceFields):
+  /// "h", "qx", "qy", "hMax", "vMax", "arrival", one `real` per cell. The two-phase solid state is one
+  /// interleaved buffer and is not listed (its layers are read through the host).
+  std::map<std::string, cl_mem> viewBuffers() const;
   /// Slope-corrected gravities as uploaded (for tests).
   std::vector<double> gp() const { return gp_.download(); }
 
@@ -140,6 +152,7 @@ class FlowSolver {
   // the step and after stage 1, static-solid flags, static maps, maxima.
   compute::RawBuffer debrisParams_;
   compute::RealBuffer solid0_, solid1_, delta_, cohesion_, maxima_;
+  compute::RealBuffer particleBed_, bedImpulse_;
   compute::Buffer<uint8_t> lock0_, lock1_;
   compute::Kernel debrisStage_, debrisTrack_, debrisDiagnostics_;
   compute::Kernel stage_, friction_, track_, diagnostics_, compact_;

@@ -46,7 +46,16 @@ void FlowSolver::buildDebris() {
                            " -DRIEMANN=" + std::to_string(static_cast<int>(settings_.riemann)) +
                            " -DTILE=" + std::to_string(kTile) +
                            // The viscous stresses are compiled out when both Reynolds numbers are off.
-                           " -DDEBRIS_VISCOUS=" + (settings_.debris.viscous() ? "1" : "0");
+                           " -DDEBRIS_VISCOUS=" + (settings_.debris.viscous() ? "1" : "0") +
+                           // The particle bed of the hybrid mode is compiled out in grid mode.
+                           " -DDEBRIS_OBSTACLE=" + (settings_.particleBed ? "1" : "0");
+  // Hybrid mode: the particles' bed (H_c, u_c, v_c per cell) and the impulse it takes per step
+  // (x, y); one-value placeholders otherwise (the kernel does not read them).
+  const std::size_t bedCells = settings_.particleBed ? n : 1;
+  particleBed_ = compute::RealBuffer(ctx, 3 * bedCells, "particle bed");
+  bedImpulse_ = compute::RealBuffer(ctx, 2 * bedCells, "particle bed impulse");
+  particleBed_.fill(0.0);
+  bedImpulse_.fill(0.0);
   debrisStage_ = compute::Kernel(ctx.program("flow/debris_stage.cl", opts), "debris_stage");
   debrisTrack_ = compute::Kernel(ctx.program("flow/debris_diagnostics.cl", opts), "debris_track_maxima");
   debrisDiagnostics_ = compute::Kernel(ctx.program("flow/debris_diagnostics.cl", opts), "debris_tile_diagnostics");
@@ -93,7 +102,9 @@ void FlowSolver::enqueueDebrisStage(bool first, double dt) {
   compute::RealBuffer &hst = first ? h_ : h1_, &qxst = first ? qx_ : qx1_, &qyst = first ? qy_ : qy1_;
   compute::RealBuffer &hout = first ? h1_ : h_, &qxout = first ? qx1_ : qx_, &qyout = first ? qy1_ : qy_;
   compute::Buffer<uint8_t>&lst = first ? lock0_ : lock1_, &lout = first ? lock1_ : lock0_;
-  debrisStage_.bind(params_, debrisParams_, mask_, tileList_, bed_, gp_, gn_, manning_, delta_, cohesion_, solid0_, h_,
+  if (first && settings_.particleBed) bedImpulse_.fill(0.0);  // the impulse of this step only
+  debrisStage_.bind(params_, debrisParams_, mask_, tileList_, bed_, gp_, gn_, manning_, delta_, cohesion_,
+                    particleBed_, bedImpulse_, solid0_, h_,
                     qx_, qy_, Sst, hst, qxst, qyst, lst, Sout, hout, qxout, qyout, lout, outStep_,
                     compute::RealArg{dt}, compute::RealArg{first ? 0.0 : 0.5}, compute::RealArg{0.5 * dt},
                     compute::RealArg{first ? dt : 0.5 * dt}, first ? 1 : 0);

@@ -144,6 +144,8 @@ void ParticleSolver::setFluidCoupling(const flow::DebrisSettings& fluid, double 
   debrisParams_ = compute::RawBuffer(ctx_, sizeof(flow::DebrisParamsT<double>), "particle drag parameters");
   flow::writeDebrisParams(debrisParams_, fluid, ctx_.precision());
   drag_ = compute::Kernel(ctx_.program("particles/particle_exchange.cl"), "particle_fluid_drag");
+  gridBed_ = compute::Kernel(ctx_.program("particles/particle_bed.cl"), "particle_grid_bed");
+  bedVelocity_ = compute::Kernel(ctx_.program("particles/particle_bed.cl"), "particle_bed_velocity");
   const std::size_t cells = grid_.cells();
   for (compute::RealBuffer* b : {&cellH_, &cellM_, &cellPx_, &cellPy_, &cellDu_, &cellDv_})
     *b = compute::RealBuffer(ctx_, cells, "particle exchange cell field");
@@ -164,6 +166,33 @@ void ParticleSolver::exchangeWithFluid(const compute::RealBuffer& h, compute::Re
   // FLIP: each particle gains the velocity change of the cells it weighs on (same weights as P2G).
   transfer_->gridVelocityToParticles(cellDu_, cellDv_, cellDu_, cellDv_, 0.0, x_, y_, count_, vx_, vy_);
   transfer_->gridToParticles(h, x_, y_, count_, fluidDepth_);
+  gridValid_ = true;
+  updateDiagnostics();
+}
+
+void ParticleSolver::refreshGridTransfer() {
+  if (!coupled_ || count_ == 0) return;
+  neighbours_->build(x_, y_, count_);
+  reorderAll();
+  transfer_->confinedToGrid(*neighbours_, x_, y_, V_, m_, vx_, vy_, cellH_, cellM_, cellPx_, cellPy_);
+  gridValid_ = true;
+}
+
+void ParticleSolver::writeGridBed(compute::RealBuffer& bed) {
+  if (!coupled_ || count_ == 0 || !gridValid_) {
+    bed.fill(0.0);
+    return;
+  }
+  const int cells = static_cast<int>(grid_.cells());
+  gridBed_.bind(cells, cellH_, cellM_, cellPx_, cellPy_, cellDu_, cellDv_, bed);
+  gridBed_.launch(compute::Range{grid_.cells()}, kParticleGroup, "particle_grid_bed");
+}
+
+void ParticleSolver::applyBedImpulse(const compute::RealBuffer& impulse) {
+  if (!coupled_ || count_ == 0 || !gridValid_) return;
+  bedVelocity_.bind(grid_.nx, grid_.ny, compute::RealArg{grid_.dx}, cellM_, impulse, cellDu_, cellDv_);
+  bedVelocity_.launch(compute::Range{grid_.cells()}, kParticleGroup, "particle_bed_velocity");
+  transfer_->gridVelocityToParticles(cellDu_, cellDv_, cellDu_, cellDv_, 0.0, x_, y_, count_, vx_, vy_);
   updateDiagnostics();
 }
 
@@ -194,6 +223,7 @@ ParticleGridFields ParticleSolver::gridFields() {
 
 void ParticleSolver::setParticles(const SeededParticles& seeded, const ParticleMaterial& material) {
   const std::size_t n = seeded.size();
+  gridValid_ = false;
   const std::vector<double> rho = perParticle(material.density, n, "density");
   const std::vector<double> phi = perParticle(material.phi, n, "phi");
   const std::vector<double> delta = perParticle(material.delta, n, "delta");
@@ -269,6 +299,7 @@ double ParticleSolver::stableSubStep() {
 
 void ParticleSolver::step(double dt) {
   if (!(dt > 0)) throw SimulationError("particle step: dt must be positive");
+  gridValid_ = false;  // the particles move: the last P2G no longer describes them
   diag_.outflowMass = 0;
   diag_.subSteps = 0;
   double done = 0;
@@ -316,6 +347,7 @@ std::vector<char> ParticleSolver::saveState() const {
 
 void ParticleSolver::restoreState(const std::vector<char>& bytes) {
   uint64_t count = 0;
+  gridValid_ = false;
   const auto& fields = stateFields();
   const std::size_t unit = compute::realSize(ctx_.precision());
   if (bytes.size() >= sizeof count + sizeof time_) std::memcpy(&count, bytes.data(), sizeof count);

@@ -106,6 +106,17 @@ class ParticleSolver {
   /// the fluid depth at every particle is stored for the buoyancy-reduced friction of the next
   /// sub-steps. h, qx, qy: the flow solver's fields.
   void exchangeWithFluid(const compute::RealBuffer& h, compute::RealBuffer& qx, compute::RealBuffer& qy, double dt);
+  /// The particles as part of the grid's bed (kernels/particles/particle_bed.cl): writes (H_c, u_c,
+  /// v_c) per cell into `bed` (3 x cells) from the P2G of the last exchangeWithFluid() (zeros without
+  /// particles). The particles must not move between that exchange and applyBedImpulse().
+  void writeGridBed(compute::RealBuffer& bed);
+  /// Gives the particles the impulse `impulse` (2 x cells, momentum per area [kg m^-1 s^-1]) that the
+  /// grid phases exerted on that bed, by G2P with the P2G weights (momentum-conserving).
+  void applyBedImpulse(const compute::RealBuffer& impulse);
+  /// Whether the P2G of the last exchange still describes the particles (they have not moved since).
+  bool gridTransferValid() const { return gridValid_; }
+  /// Recomputes that P2G from the current positions (after restoreState(), for a bitwise resume).
+  void refreshGridTransfer();
   std::size_t count() const { return count_; }
   /// g_n per terrain cell [m/s^2] (host copy of what the kernels use).
   const std::vector<double>& gn() const { return gnHost_; }
@@ -140,7 +151,8 @@ class ParticleSolver {
   bool coupled_ = false;
   double grain_ = 0.01;
   compute::RawBuffer debrisParams_;
-  compute::Kernel drag_;
+  compute::Kernel drag_, gridBed_, bedVelocity_;
+  bool gridValid_ = false;  ///< cellH_, cellM_, cellPx_, cellPy_ hold the P2G of the current positions
   compute::RealBuffer cellH_, cellM_, cellPx_, cellPy_, cellDu_, cellDv_;
   std::vector<double> gnHost_;
   // Per sub-step scratch (not reordered).

@@ -1,5 +1,6 @@
 #include "sim/ParticleRun.hpp"
 
+#include <cstdint>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -11,17 +12,30 @@
 
 namespace talus::sim {
 
-ParticleRun::ParticleRun(compute::Context& ctx, const Raster& dem, const ParticleScene& scene) : dem_(dem) {
+ParticleRun::ParticleRun(compute::Context& ctx, const Raster& dem, const ParticleScene& scene, flow::FlowSolver& flow)
+    : dem_(dem), flow_(flow) {
   solver_ = std::make_unique<particles::ParticleSolver>(ctx, dem.grid, scene.terrain, scene.settings);
   solver_->setParticles(scene.seeded, scene.material);
   solver_->setFluidCoupling(scene.fluid, scene.grain);
   fluidDensity_ = scene.settings.fluidDensity;
   initialMass_ = solver_->diagnostics().mass;
+  // The grid sees the particles from its first step on (a zero-length exchange changes nothing).
+  if (flow_.settings().particleBed) {
+    flow_.changeDischarge([&](compute::RealBuffer& h, compute::RealBuffer& qx, compute::RealBuffer& qy) {
+      solver_->exchangeWithFluid(h, qx, qy, 0.0);
+    });
+    solver_->writeGridBed(flow_.particleBed());
+    fluidAtParticles_ = true;
+  }
 }
 
 double ParticleRun::maxStep() { return 200 * solver_->stableSubStep(); }
 
-std::string ParticleRun::step(double dt, double time, flow::FlowSolver& flow) {
+std::string ParticleRun::step(double dt, double time) {
+  flow::FlowSolver& flow = flow_;
+  // The reaction of the grid's bed forces on the particles in the grid step just taken; the
+  // particles have not moved since the exchange that set that bed.
+  if (flow.settings().particleBed) solver_->applyBedImpulse(flow.bedImpulse());
   solver_->step(dt);
   cacheValid_ = false;
   const particles::ParticleDiagnostics& d = solver_->diagnostics();
@@ -32,14 +46,7 @@ std::string ParticleRun::step(double dt, double time, flow::FlowSolver& flow) {
       releasedLast_ = solver_->releaseToGrid(h, qx, qy);
     });
   releasedTotal_ += releasedLast_;
-  // Drag with the free fluid, and the fluid depth at the particles for their friction: skipped while
-  // the grid holds no fluid (once more after it dried, to clear the depth the particles hold).
-  const bool wet = flow.diagnostics().volume > 0;
-  if (wet || fluidAtParticles_)
-    flow.changeDischarge([&](compute::RealBuffer& h, compute::RealBuffer& qx, compute::RealBuffer& qy) {
-      solver_->exchangeWithFluid(h, qx, qy, dt);
-    });
-  fluidAtParticles_ = wet;
+  coupleToGrid(dt);
   // A particle faster than the elastic wave speed times 10 (or NaN) means the explicit scheme has
   // blown up: no physical flow on a DEM gets there.
   if (!std::isfinite(d.maxSpeed) || !std::isfinite(d.kinetic)) {
@@ -50,21 +57,58 @@ std::string ParticleRun::step(double dt, double time, flow::FlowSolver& flow) {
   return "";
 }
 
+void ParticleRun::coupleToGrid(double dt) {
+  flow::FlowSolver& flow = flow_;
+  // Drag with the free fluid, and the fluid depth at the particles for their friction: skipped while
+  // the grid holds no fluid (once more after it dried, to clear the depth the particles hold). With
+  // the particle bed, the exchange (its P2G) runs whenever the grid holds any material, which then
+  // flows over the particles in the next grid step; an empty grid needs no bed.
+  const flow::FlowDiagnostics& d = flow.diagnostics();
+  const bool wet = d.volume > 0, any = wet || d.volumeSolid > 0;
+  const bool bed = flow.settings().particleBed && any;
+  if (wet || fluidAtParticles_ || bed)
+    flow.changeDischarge([&](compute::RealBuffer& h, compute::RealBuffer& qx, compute::RealBuffer& qy) {
+      solver_->exchangeWithFluid(h, qx, qy, dt);
+    });
+  fluidAtParticles_ = wet;
+  if (flow.settings().particleBed) solver_->writeGridBed(flow.particleBed());
+}
+
+// Layout: bookkeeping (5 doubles), the particle bed the next grid step uses (its byte count, then
+// its bytes; empty in runs without it), the particle solver's state.
 std::vector<char> ParticleRun::saveState() const {
-  const double book[4] = {initialMass_, outflow_, releasedTotal_, fluidAtParticles_ ? 1.0 : 0.0};
+  const double book[5] = {initialMass_, outflow_, releasedTotal_, fluidAtParticles_ ? 1.0 : 0.0,
+                          solver_->gridTransferValid() ? 1.0 : 0.0};
   std::vector<char> bytes(sizeof book);
   std::memcpy(bytes.data(), book, sizeof book);
+  const bool bed = flow_.settings().particleBed;
+  const uint64_t bedBytes = bed ? flow_.particleBed().raw().bytes() : 0;
+  const std::size_t at = bytes.size();
+  bytes.resize(at + sizeof bedBytes + bedBytes);
+  std::memcpy(bytes.data() + at, &bedBytes, sizeof bedBytes);
+  if (bed) flow_.particleBed().raw().readBytes(bytes.data() + at + sizeof bedBytes, bedBytes);
   const std::vector<char> s = solver_->saveState();
   bytes.insert(bytes.end(), s.begin(), s.end());
   return bytes;
 }
 
 void ParticleRun::restoreState(const std::vector<char>& bytes) {
-  double book[4];
-  if (bytes.size() < sizeof book) throw InputError("checkpoint: the particle state is truncated");
+  double book[5];
+  uint64_t bedBytes = 0;
+  if (bytes.size() < sizeof book + sizeof bedBytes) throw InputError("checkpoint: the particle state is truncated");
   std::memcpy(book, bytes.data(), sizeof book);
+  std::memcpy(&bedBytes, bytes.data() + sizeof book, sizeof bedBytes);
+  const bool bed = flow_.settings().particleBed;
+  const std::size_t at = sizeof book + sizeof bedBytes;
+  if (bedBytes != (bed ? flow_.particleBed().raw().bytes() : 0) || bytes.size() < at + bedBytes)
+    throw InputError("checkpoint: the particle bed does not match this run");
   initialMass_ = book[0], outflow_ = book[1], releasedTotal_ = book[2], fluidAtParticles_ = book[3] != 0;
-  solver_->restoreState(std::vector<char>(bytes.begin() + sizeof book, bytes.end()));
+  solver_->restoreState(std::vector<char>(bytes.begin() + at + bedBytes, bytes.end()));
+  if (bed) {
+    flow_.particleBed().raw().writeBytes(bytes.data() + at, bedBytes);
+    // The P2G that the pending bed impulse is shared out with: recomputed from the same positions.
+    if (book[4] != 0) solver_->refreshGridTransfer();
+  }
   cacheValid_ = false;
 }
 

@@ -17,14 +17,19 @@ namespace talus::sim {
 
 class ParticleRun : public ParticleView {
  public:
-  ParticleRun(compute::Context& ctx, const Raster& dem, const ParticleScene& scene);
+  /// Seeds the particles and couples them to the grid `flow` (which must outlive this run): the
+  /// fluid exchange, and with FlowSettings::particleBed the particles as part of the grid's bed,
+  /// set up for the first grid step.
+  ParticleRun(compute::Context& ctx, const Raster& dem, const ParticleScene& scene, flow::FlowSolver& flow);
 
   /// The largest grid step the loop should take so that progress and outputs stay fine-grained:
   /// 200 particle sub-steps (infinite without particles).
   double maxStep();
-  /// Advances the particles by dt and moves the fluid their broken bonds released onto the grid's
-  /// free fluid (`flow`). Returns an empty string, or what went wrong (non-finite speeds) with the time.
-  std::string step(double dt, double time, flow::FlowSolver& flow);
+  /// After a grid step of dt: gives the particles the impulse of the grid's bed forces of that step,
+  /// advances them by dt, moves the fluid their broken bonds released onto the grid's free fluid,
+  /// exchanges drag with it and sets the particle bed of the next grid step. Returns an empty
+  /// string, or what went wrong (non-finite speeds) with the time.
+  std::string step(double dt, double time);
   /// Fluid volume moved to the grid by the last step [m^3] (a source of the grid's volume balance).
   double releasedLastStep() const { return releasedLast_; }
   /// Fluid volume moved to the grid since the start [m^3].
@@ -46,6 +51,8 @@ class ParticleRun : public ParticleView {
   /// Particle state and bookkeeping for checkpoints (restoreState after construction from the same scene).
   std::vector<char> saveState() const;
   void restoreState(const std::vector<char>& bytes);
+  /// Exchange with the grid and the particle bed of the next grid step (see step()).
+  void coupleToGrid(double dt);
 
   // ParticleView
   std::size_t count() const override;
@@ -55,6 +62,7 @@ class ParticleRun : public ParticleView {
 
  private:
   const Raster& dem_;
+  flow::FlowSolver& flow_;
   std::unique_ptr<particles::ParticleSolver> solver_;
   double initialMass_ = 0, outflow_ = 0, releasedLast_ = 0, releasedTotal_ = 0, fluidDensity_ = 1000;
   bool fluidAtParticles_ = false;  ///< the particles hold a non-zero fluid depth from the last exchange

@@ -125,8 +125,10 @@ Scene loadScene(const io::RunConfig& cfg) {
     bool any = false;
     for (std::size_t k = 0; k < hs.size(); ++k) any = any || (s.dem.valid[k] && hs[k] > 0.0);
     // A scene with no solids on the grid runs exactly the single-phase path (spec §3, grid mode).
-    if (any) {
+    // In hybrid mode the grid always runs the two-phase model: the particles are part of its bed.
+    if (any || s.particles.enabled) {
       f.twoPhase = true;
+      f.particleBed = s.particles.enabled;
       s.flow.hs = std::move(hs);
       s.flow.rhoS = std::move(rhoS);
       s.flow.phi = std::move(phi);

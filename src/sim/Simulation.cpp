@@ -55,7 +55,7 @@ Simulation::Simulation(const Scene& scene, const io::RunConfig& config, const st
   for (uint8_t v : scene.dem.valid) domainCells_ += v;
   initialVolume_ = totalVolume(solver_->diagnostics());
   if (scene.particles.enabled && !scene.particles.seeded.x.empty())
-    particles_ = std::make_unique<ParticleRun>(*ctx_, scene.dem, scene.particles);
+    particles_ = std::make_unique<ParticleRun>(*ctx_, scene.dem, scene.particles, *solver_);
   if (mode != OutputMode::Resume) {
     out_->writeText("run.resolved.run", config.echo());
     return;
@@ -171,7 +171,7 @@ Progress Simulation::stepOnce() {
   ++steps_;
   std::string problem = health_->check(*solver_, dt);
   if (problem.empty() && particles_) {
-    problem = particles_->step(dt, solver_->time(), *solver_);
+    problem = particles_->step(dt, solver_->time());
     initialVolume_ += particles_->releasedLastStep();  // released fluid is a source of the grid's volume
   }
   if (!problem.empty()) {
