@@ -41,6 +41,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   connect(layers_, &LayerPanel::changed, this, [this] { applyLayerStyle(); });
   connect(viewer_, &ViewerWidget::hovered, this, &MainWindow::onHover);
   connect(viewer_, &ViewerWidget::interopChosen, log_, &LogPanel::append);
+  connect(viewer_, &ViewerWidget::sharedPathChosen, run_, &RunController::setDeviceSnapshots);
   connect(run_, &RunController::log, log_, &LogPanel::append);
   connect(run_, &RunController::stateChanged, this, [this](RunController::State s) {
     status_->showState(s);
@@ -220,7 +221,8 @@ void MainWindow::onPrepared() {
   const sim::ViewFields* view = run_->viewFields();
   viewer_->setTerrain(view->grid(), view->elevation());
   sim::Simulation* sim = run_->simulation();
-  viewer_->setDataSource(&sim->context().device(), sim->context().context(), sim->context().queue());
+  viewer_->setDataSource(&sim->context().device(), sim->context().context(), sim->context().queue(),
+                         QString::fromStdString(sim->context().glShareReason()));
   layers_->setCatalogue(view->gridLayers(), view->particleAttributes());
   applyLayerStyle();
 }

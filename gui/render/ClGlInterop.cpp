@@ -28,7 +28,19 @@ QString interopPathName(InteropPath path) {
   return path == InteropPath::Shared ? "OpenCL/OpenGL sharing (cl_khr_gl_sharing)" : "copy through host memory";
 }
 
-InteropChoice chooseInteropPath(const compute::DeviceInfo* device, cl_context dataContext, cl_command_queue queue) {
+compute::GlShareHandles glShareHandlesOfCurrentContext() {
+  compute::GlShareHandles h;
+  h.glContext = reinterpret_cast<void*>(glXGetCurrentContext());
+  h.display = reinterpret_cast<void*>(glXGetCurrentDisplay());
+  return h;
+}
+
+QString interopLogLine(const InteropChoice& choice) {
+  return QString("interop: %1 (%2)").arg(interopPathName(choice.path), choice.reason);
+}
+
+InteropChoice chooseInteropPath(const compute::DeviceInfo* device, cl_context dataContext, cl_command_queue queue,
+                                const QString& contextNote) {
   InteropChoice c;
   if (!device) {
     c.reason = "no OpenCL device holds the data";
@@ -38,19 +50,31 @@ InteropChoice chooseInteropPath(const compute::DeviceInfo* device, cl_context da
     c.reason = QString("device '%1' offers cl_khr_gl_sharing, but the run's OpenCL context was not created "
                        "for this OpenGL context")
                    .arg(QString::fromStdString(device->name));
+    if (!contextNote.isEmpty()) c.reason += ": " + contextNote;
   } else {
     c.path = InteropPath::Shared;
     c.context = dataContext;
     c.queue = queue;
+    c.deviceId = device->id;
     c.reason = QString("device '%1' shares buffers with OpenGL").arg(QString::fromStdString(device->name));
   }
   return c;
 }
 
-ClGlInterop::ClGlInterop(QOpenGLFunctions_3_3_Core& gl, InteropChoice choice) : gl_(gl), choice_(std::move(choice)) {}
+ClGlInterop::ClGlInterop(QOpenGLFunctions_3_3_Core& gl, InteropChoice choice) : gl_(gl), choice_(std::move(choice)) {
+  if (choice_.path == InteropPath::Shared && choice_.context && choice_.deviceId) {
+    // Uploads run on the GUI thread while the worker keeps the run's queue busy with steps: a
+    // queue of their own keeps them from waiting for (or interleaving with) the simulation.
+    cl_int err = CL_SUCCESS;
+    ownQueue_ = clCreateCommandQueue(choice_.context, choice_.deviceId, 0, &err);
+    if (err != CL_SUCCESS) ownQueue_ = nullptr;
+    if (ownQueue_) choice_.queue = ownQueue_;
+  }
+}
 
 ClGlInterop::~ClGlInterop() {
   for (auto& [buffer, mem] : shared_) clReleaseMemObject(mem);
+  if (ownQueue_) clReleaseCommandQueue(ownQueue_);
 }
 
 void ClGlInterop::release(GLuint glBuffer) {

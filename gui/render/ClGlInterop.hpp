@@ -1,7 +1,9 @@
 // How device data reach OpenGL buffers: through OpenCL/OpenGL sharing (cl_khr_gl_sharing: the GL
 // buffer is an OpenCL memory object and device data are copied device to device) when the device
 // offers it and the OpenCL context holding the data was created for the current GL context, or
-// through host memory otherwise (PoCL's CPU device). The choice is automatic and says why.
+// through host memory otherwise (PoCL's CPU device). The choice is automatic and says why. The
+// run's OpenCL context is created for the viewer's GL context when the viewer hands its handles to
+// the engine first (glShareHandlesOfCurrentContext + compute::setGlShareForNewContexts).
 #pragma once
 #include <CL/cl.h>
 
@@ -11,6 +13,7 @@
 #include <map>
 
 #include "compute/Device.hpp"
+#include "compute/GlShare.hpp"
 
 namespace talus::gui {
 
@@ -25,11 +28,21 @@ struct InteropChoice {
   QString reason;
   cl_context context = nullptr;      ///< the sharing context (Shared only)
   cl_command_queue queue = nullptr;  ///< a queue of that context (Shared only)
+  cl_device_id deviceId = nullptr;   ///< the device of that context (Shared only)
 };
 
 /// The path for data living in `dataContext` (may be nullptr: no device data, host copies only) on
-/// `device`, given the GL context current on this thread.
-InteropChoice chooseInteropPath(const compute::DeviceInfo* device, cl_context dataContext, cl_command_queue queue);
+/// `device`, given the GL context current on this thread. `contextNote`, when given, says why the
+/// data context does or does not share with OpenGL (compute::Context::glShareReason) and is used
+/// when the context turns out not to be shared with this GL context.
+InteropChoice chooseInteropPath(const compute::DeviceInfo* device, cl_context dataContext, cl_command_queue queue,
+                                const QString& contextNote = {});
+
+/// The GL context and display current on this thread (GLX), as opaque handles for the engine.
+compute::GlShareHandles glShareHandlesOfCurrentContext();
+
+/// The log line for a choice: "interop: <path> (<reason>)".
+QString interopLogLine(const InteropChoice& choice);
 
 /// Name of a path for messages ("OpenCL/OpenGL sharing", "copy through host memory").
 QString interopPathName(InteropPath path);
@@ -55,6 +68,7 @@ class ClGlInterop {
  private:
   QOpenGLFunctions_3_3_Core& gl_;
   InteropChoice choice_;
+  cl_command_queue ownQueue_ = nullptr;  // GUI-thread queue for shared uploads (the run's is busy)
   std::map<GLuint, cl_mem> shared_;  // GL buffer -> its OpenCL memory object
   int sharedUploads_ = 0, hostUploads_ = 0;
 };

@@ -3,6 +3,7 @@
 #include <QMetaObject>
 
 #include "core/Error.hpp"
+#include "render/TerrainRenderer.hpp"  // kGlNoData: device copies of layers are drawn as they are
 
 namespace talus::gui {
 
@@ -84,6 +85,9 @@ void RunController::start(const io::RunConfig& config, bool overwrite, bool paus
 
 void RunController::onPrepared() {
   view_ = std::make_unique<sim::ViewFields>(*scene_, sim_->solver(), sim_->particleView());
+  // Layers made of the solver's own device fields are packed on the device (and, with GL sharing,
+  // copied device to device into the viewer's buffers).
+  view_->setDeviceFields(sim_->context(), sim_->solver().viewBuffers());
   const Grid& g = scene_->dem.grid;
   emit log(QString("%1 on %2 (%3), grid %4 x %5 of %6 m, t = %7 .. %8 s; outputs in %9")
                .arg(QString::fromStdString(scene_->runFile), QString::fromStdString(sim_->context().device().name),
@@ -232,7 +236,7 @@ void RunController::requestSnapshot() {
   if (!control_ || !view_ || snapshotPending_) return;
   snapshotPending_ = true;
   control_->post([this](sim::Simulation& sim) {
-    auto s = std::make_shared<sim::ViewSnapshot>(view_->snapshot());
+    auto s = std::make_shared<sim::ViewSnapshot>(view_->snapshot({}, deviceSnapshots_, kGlNoData));
     s->steps = sim.steps();
     QMetaObject::invokeMethod(this, [this, s] {
       snapshotPending_ = false;

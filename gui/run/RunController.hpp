@@ -51,6 +51,9 @@ class RunController : public QObject {
   void restart();
   /// Asks for a snapshot of every layer (delivered by snapshotReady); ignored while one is pending.
   void requestSnapshot();
+  /// Whether snapshots keep the device copies of the layers packed on the device (for a viewer
+  /// whose OpenGL buffers are shared with the run's OpenCL context).
+  void setDeviceSnapshots(bool keep) { deviceSnapshots_ = keep; }
 
   State state() const { return state_; }
   /// Valid after prepared() until the next start().
@@ -88,6 +91,7 @@ class RunController : public QObject {
   bool overwrite_ = false, startPaused_ = false, restartWhenEnded_ = false;
   std::atomic<bool> cancelPrepare_{false};
   bool snapshotPending_ = false;
+  std::atomic<bool> deviceSnapshots_{false};
   long long snapshotSteps_ = -1;
   QTimer snapshotTimer_;
   // Written by the worker, read on the GUI thread.

@@ -20,6 +20,10 @@ ViewerWidget::~ViewerWidget() {
   terrain_.reset();
   interop_.reset();
   doneCurrent();
+  // Contexts made from now on must not name the GL context about to go away.
+  const compute::GlShareHandles now = compute::glShareForNewContexts();
+  if (offered_.valid() && now.glContext == offered_.glContext && now.display == offered_.display)
+    compute::setGlShareForNewContexts({});
 }
 
 void ViewerWidget::setTerrain(const Grid& grid, std::vector<float> elevation) {
@@ -30,10 +34,12 @@ void ViewerWidget::setTerrain(const Grid& grid, std::vector<float> elevation) {
   resetView();
 }
 
-void ViewerWidget::setDataSource(const compute::DeviceInfo* device, cl_context context, cl_command_queue queue) {
+void ViewerWidget::setDataSource(const compute::DeviceInfo* device, cl_context context, cl_command_queue queue,
+                                 const QString& contextNote) {
   device_ = device;
   clContext_ = context;
   clQueue_ = queue;
+  contextNote_ = contextNote;
   if (glReady_) {
     makeCurrent();
     chooseInterop();
@@ -90,14 +96,20 @@ void ViewerWidget::initializeGL() {
   terrain_ = std::make_unique<TerrainRenderer>(gl());
   particles_ = std::make_unique<ParticleRenderer>(gl());
   glReady_ = true;
+  // Offer this GL context to the OpenCL contexts runs create from now on (compute::Context::create):
+  // a device with cl_khr_gl_sharing then shares buffers with it. Runs started before the viewer
+  // was first shown get no sharing (their log says so).
+  offered_ = glShareHandlesOfCurrentContext();
+  if (offered_.valid()) compute::setGlShareForNewContexts(offered_);
   chooseInterop();
 }
 
 void ViewerWidget::chooseInterop() {
-  interop_ = std::make_unique<ClGlInterop>(gl(), chooseInteropPath(device_, clContext_, clQueue_));
-  if (device_)
-    emit interopChosen(QString("viewer: device data reach OpenGL by %1 (%2)")
-                         .arg(interopPathName(interop_->choice().path), interop_->choice().reason));
+  interop_ = std::make_unique<ClGlInterop>(gl(), chooseInteropPath(device_, clContext_, clQueue_, contextNote_));
+  if (device_) {
+    emit interopChosen(interopLogLine(interop_->choice()));
+    emit sharedPathChosen(interop_->choice().path == InteropPath::Shared);
+  }
 }
 
 void ViewerWidget::resizeGL(int w, int h) {
@@ -124,7 +136,10 @@ void ViewerWidget::uploadPending() {
     rampDirty_ = false;
   }
   if (layerDirty_ && snapshot_ && terrain_->hasTerrain()) {
-    if (const std::vector<float>* v = snapshot_->layer(layer_.toStdString())) terrain_->setLayer(*v, *interop_);
+    // On the shared path the snapshot's device copy (if it has one) goes device to device.
+    const std::string name = layer_.toStdString();
+    if (const std::vector<float>* v = snapshot_->layer(name))
+      terrain_->setLayer(*v, *interop_, interop_->choice().path == InteropPath::Shared ? snapshot_->deviceLayer(name) : nullptr);
     layerDirty_ = false;
   }
   if (particlesDirty_ && snapshot_) {

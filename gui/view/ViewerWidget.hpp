@@ -37,7 +37,9 @@ class ViewerWidget : public QOpenGLWidget, protected QOpenGLFunctions_3_3_Core {
   /// The terrain of a new scene: grid and elevation (NaN outside the domain). Resets the view.
   void setTerrain(const Grid& grid, std::vector<float> elevation);
   /// Where device data live, for the choice of the interop path (nullptrs: host data only).
-  void setDataSource(const compute::DeviceInfo* device, cl_context context, cl_command_queue queue);
+  /// `contextNote` says why that context does or does not share with OpenGL (for the log).
+  void setDataSource(const compute::DeviceInfo* device, cl_context context, cl_command_queue queue,
+                     const QString& contextNote = {});
   /// The data to draw from now on (null: terrain only).
   void setSnapshot(std::shared_ptr<const sim::ViewSnapshot> snapshot);
   std::shared_ptr<const sim::ViewSnapshot> snapshot() const { return snapshot_; }
@@ -65,8 +67,11 @@ class ViewerWidget : public QOpenGLWidget, protected QOpenGLFunctions_3_3_Core {
  signals:
   /// The mouse is over cell (i, j) (inside false: over no cell).
   void hovered(int i, int j, bool inside);
-  /// The interop path was chosen (sentence for the log).
+  /// The interop path was chosen (sentence for the log: "interop: <path> (<reason>)").
   void interopChosen(const QString& report);
+  /// The interop path was chosen: true when device data reach OpenGL by sharing, so snapshots
+  /// should keep their device copies.
+  void sharedPathChosen(bool shared);
 
  protected:
   void initializeGL() override;
@@ -100,6 +105,8 @@ class ViewerWidget : public QOpenGLWidget, protected QOpenGLFunctions_3_3_Core {
   const compute::DeviceInfo* device_ = nullptr;
   cl_context clContext_ = nullptr;
   cl_command_queue clQueue_ = nullptr;
+  QString contextNote_;
+  compute::GlShareHandles offered_;  // what initializeGL offered the engine for GL-shared contexts
   QPoint lastMouse_;
   long long frames_ = 0;
 };

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "compute/Device.hpp"
+#include "compute/GlShare.hpp"
 #include "compute/Precision.hpp"
 #include "compute/Profiler.hpp"
 
@@ -19,7 +20,11 @@ class Context {
   /// Opens `device` for kernels of the given precision. Throws ComputeError when the device cannot
   /// run double precision and Precision::Double was requested.
   Context(const DeviceInfo& device, Precision precision);
-  /// Convenience: selectDevice(selector) then the constructor above.
+  /// As above, and shares buffers with the OpenGL context `gl` when the device can (planGlSharing);
+  /// otherwise an ordinary context, with glShareReason() saying why sharing is off.
+  Context(const DeviceInfo& device, Precision precision, const GlShareHandles& gl);
+  /// Convenience: selectDevice(selector) then the constructor above, with the handles of
+  /// setGlShareForNewContexts() (none unless a viewer set them).
   static std::unique_ptr<Context> create(const std::string& selector, Precision precision);
   ~Context();
   Context(const Context&) = delete;
@@ -30,6 +35,10 @@ class Context {
   const DeviceInfo& device() const { return device_; }
   Precision precision() const { return precision_; }
   Profiler& profiler() { return profiler_; }
+  /// True when the context was created for an OpenGL context (cl_khr_gl_sharing properties).
+  bool glShared() const { return glShared_; }
+  /// Why the context does or does not share buffers with OpenGL (one clause, for the log).
+  const std::string& glShareReason() const { return glShareReason_; }
 
   /// The program built from kernels/<file> with `options` (plus the precision options), built once
   /// and cached in memory and on disk (binary cache keyed by source, device, driver and options).
@@ -44,6 +53,8 @@ class Context {
   Precision precision_;
   cl_context context_ = nullptr;
   cl_command_queue queue_ = nullptr;
+  bool glShared_ = false;
+  std::string glShareReason_ = "no OpenGL context was offered for sharing";
   Profiler profiler_;
   std::map<std::string, std::unique_ptr<Program>> programs_;
 };

@@ -6,6 +6,11 @@
 #include <map>
 #include <memory>
 
+#include "compute/Buffer.hpp"
+#include "compute/ClError.hpp"
+#include "compute/Context.hpp"
+#include "compute/Program.hpp"
+#include "core/Error.hpp"
 #include "flow/FlowSolver.hpp"
 #include "sim/Scene.hpp"
 
@@ -57,6 +62,11 @@ const std::vector<float>* ViewSnapshot::layer(const std::string& name) const {
   for (std::size_t k = 0; k < layerNames.size(); ++k)
     if (layerNames[k] == name) return &layers[k];
   return nullptr;
+}
+
+cl_mem ViewSnapshot::deviceLayer(const std::string& name) const {
+  auto it = deviceLayers.find(name);
+  return it == deviceLayers.end() || !it->second ? nullptr : it->second->mem();
 }
 
 const std::vector<float>* ViewSnapshot::particleAttribute(const std::string& name) const {
@@ -119,9 +129,72 @@ std::vector<ParticleAttributeInfo> ViewFields::particleAttributes() const {
   return particles_ ? particles_->attributes() : std::vector<ParticleAttributeInfo>{};
 }
 
-cl_mem ViewFields::deviceBuffer(const std::string&) const { return nullptr; }
+void ViewFields::setDeviceFields(compute::Context& ctx, std::map<std::string, cl_mem> fields) {
+  ctx_ = &ctx;
+  deviceFields_ = std::move(fields);
+  packer_ = std::make_unique<ViewPacker>(ctx);
+  const std::vector<uint8_t>& valid = scene_.dem.valid;
+  validMask_ = std::make_shared<compute::RawBuffer>(ctx, valid.size(), "view mask");
+  validMask_->writeBytes(valid.data(), valid.size());
+}
 
-ViewSnapshot ViewFields::snapshot(const std::vector<std::string>& names) const {
+bool ViewFields::recipe(const std::string& n, PackMode& mode, std::vector<std::string>& f) const {
+  // The same formulas as the host computation in snapshot(), field by field.
+  const bool two = solver_.twoPhase();
+  if (n == "h") {
+    mode = two ? PackMode::Sum : PackMode::Copy;
+    f = two ? std::vector<std::string>{"h", "hs"} : std::vector<std::string>{"h"};
+  } else if (n == "hf" || n == "hs") {
+    mode = PackMode::Copy;
+    f = {n == "hf" ? "h" : "hs"};
+  } else if (n == "velocity" && two) {
+    mode = PackMode::SpeedSum;
+    f = {"h", "qx", "qy", "hs", "qsx", "qsy"};
+  } else if (n == "velocity" || n == "vf") {
+    mode = PackMode::Speed;
+    f = {"h", "qx", "qy"};
+  } else if (n == "vs") {
+    mode = PackMode::Speed;
+    f = {"hs", "qsx", "qsy"};
+  } else if (n == "solid fraction") {
+    mode = PackMode::Fraction;
+    f = {"h", "hs"};
+  } else if (n == "hmax" || n == "hfmax" || n == "hsmax") {
+    mode = PackMode::Copy;
+    f = {n == "hfmax" ? "m.hf" : n == "hsmax" ? "m.hs" : two ? "m.h" : "hMax"};
+  } else if (n == "vmax") {
+    mode = two ? PackMode::Max2 : PackMode::Copy;
+    f = two ? std::vector<std::string>{"m.vf", "m.vs"} : std::vector<std::string>{"vMax"};
+  } else if (n == "arrival") {
+    mode = PackMode::Arrival;
+    f = {"arrival"};
+  } else {
+    return false;
+  }
+  return true;
+}
+
+bool ViewFields::canPackOnDevice(const std::string& name) const {
+  PackMode mode;
+  std::vector<std::string> fields;
+  if (!packer_ || !findLayer(name) || !recipe(name, mode, fields)) return false;
+  for (const std::string& f : fields)
+    if (!deviceFields_.count(f) || !deviceFields_.at(f)) return false;
+  return true;
+}
+
+void ViewFields::packLayer(const std::string& name, cl_mem out, cl_command_queue queue, float noValue) const {
+  PackMode mode;
+  std::vector<std::string> fields;
+  if (!canPackOnDevice(name) || !recipe(name, mode, fields))
+    throw ComputeError("layer '" + name + "' cannot be packed on the device (its solver fields are not on it)");
+  cl_mem in[6] = {};
+  for (std::size_t k = 0; k < fields.size(); ++k) in[k] = deviceFields_.at(fields[k]);
+  const PackInputs inputs{in[0], in[1], in[2], in[3], in[4], in[5], validMask_->mem()};
+  packer_->packValues(mode, grid().cells(), inputs, scene_.settings.hDry, out, queue, noValue);
+}
+
+ViewSnapshot ViewFields::snapshot(const std::vector<std::string>& names, bool keepDevice, float deviceNoValue) const {
   ViewSnapshot s;
   s.grid = grid();
   s.time = solver_.time();
@@ -143,6 +216,22 @@ ViewSnapshot ViewFields::snapshot(const std::vector<std::string>& names) const {
     const std::string& n = info.name;
     if (!names.empty() && std::find(names.begin(), names.end(), n) == names.end()) continue;
     const std::size_t cells = s.grid.cells();
+    if (canPackOnDevice(n)) {
+      // Packed on the device (the kernel applies the mask), read back once; the no-value marker
+      // of the device copy becomes NaN on the host.
+      const float noValue = keepDevice ? deviceNoValue : kNoValue;
+      auto packed = std::make_shared<compute::RawBuffer>(*ctx_, cells * sizeof(float), "packed view layer");
+      packLayer(n, packed->mem(), nullptr, noValue);
+      std::vector<float> values(cells);
+      packed->readBytes(values.data(), cells * sizeof(float));
+      if (!std::isnan(noValue))
+        for (float& v : values)
+          if (v == noValue) v = kNoValue;
+      s.layerNames.push_back(n);
+      s.layers.push_back(std::move(values));
+      if (keepDevice) s.deviceLayers[n] = std::move(packed);
+      continue;
+    }
     std::vector<float> out(cells, 0.0f);
     if (n == "h" || n == "velocity" || n == "hf" || n == "vf") {
       const auto &h = cache.get("h"), &qx = cache.get("qx"), &qy = cache.get("qy");
