@@ -130,9 +130,18 @@ void ParticleRun::writeLayer(const std::string& path) const {
   const Grid& g = dem_.grid;
   const std::vector<double>& gn = solver_->gn();
   const std::size_t n = s.size();
+  // Particles removed in the last sub-step (NaN position) are not written: they are outflow.
+  std::vector<std::size_t> live;
+  for (std::size_t q = 0; q < n; ++q)
+    if (std::isfinite(s.x[q]) && std::isfinite(s.y[q])) live.push_back(q);
+  auto keep = [&](const std::vector<double>& v) {
+    std::vector<double> out(live.size());
+    for (std::size_t k = 0; k < live.size(); ++k) out[k] = v[live[k]];
+    return out;
+  };
   io::ParticleRecords r;
-  r.x = s.x;
-  r.y = s.y;
+  r.x = keep(s.x);
+  r.y = keep(s.y);
   std::vector<double> vx(n), vy(n), speed(n), I1(n), sqrtJ2(n), frac(n), fsc(n), ffc(n);
   for (std::size_t q = 0; q < n; ++q) {
     const auto [ex, ny] = io::gridFrameVectorToWorld(g, s.vx[q], s.vy[q]);
@@ -151,17 +160,17 @@ void ParticleRun::writeLayer(const std::string& path) const {
     fsc[q] = s.structured0[q] * frac[q];
     ffc[q] = s.confined0[q] * frac[q];
   }
-  r.add("vx", std::move(vx));
-  r.add("vy", std::move(vy));
-  r.add("speed", std::move(speed));
-  r.add("I1", std::move(I1));
-  r.add("sqrtJ2", std::move(sqrtJ2));
-  r.add("cohesion_fraction", std::move(frac));
-  r.add("f_sc", std::move(fsc));
-  r.add("f_fc", std::move(ffc));
-  r.add("plastic_strain", s.plastic);
-  r.add("mass", s.mass);
-  r.add("thickness", s.H);
+  r.add("vx", keep(vx));
+  r.add("vy", keep(vy));
+  r.add("speed", keep(speed));
+  r.add("I1", keep(I1));
+  r.add("sqrtJ2", keep(sqrtJ2));
+  r.add("cohesion_fraction", keep(frac));
+  r.add("f_sc", keep(fsc));
+  r.add("f_fc", keep(ffc));
+  r.add("plastic_strain", keep(s.plastic));
+  r.add("mass", keep(s.mass));
+  r.add("thickness", keep(s.H));
   std::filesystem::create_directories(std::filesystem::path(path).parent_path());
   io::writeParticleLayer(path, g, r);
 }
