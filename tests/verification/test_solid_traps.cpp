@@ -90,3 +90,24 @@ TEST(SolidTraps, SolidOnTheRimOfAFilledPitStaysAtRest) {
   EXPECT_EQ(qmax, 0.0) << "solids next to a filled pit must not be pushed into it";
   EXPECT_TRUE(unchanged);
 }
+
+// A pile at rest (0.54 m, cohesionless, phi = 34 degrees) on a ledge 1.25 m above its downhill
+// neighbour, which holds a film just thicker than the film threshold (0.10001 mm), everything at
+// rest: friction holds the pile (bed push 0.1 g against 0.67 g), and the film has nothing to push it.
+// Before the fix the static face between them carried a share of the pile's pressure, which
+// accelerated the film to 180 m/s within one step (found in data/kot_debrisflow at t = 112 s, where
+// the health check stopped the run). Exact expectation: nothing moves.
+TEST(SolidTraps, FilmBesideAPileAtRestStaysAtRest) {
+  const Grid g = Grid::make(5, 3, 5.0);
+  flow::FlowInput in = solids(g);
+  in.phi.assign(g.cells(), 0.6);
+  in.cohesion.assign(g.cells(), 0.0);
+  for (int j = 0; j < g.ny; ++j) {
+    for (int i = 0; i < 2; ++i) in.bed[g.index(i, j)] = 1.25;
+    in.hs[g.index(1, j)] = 0.54;
+    in.hs[g.index(2, j)] = 1.0001e-4;
+  }
+  const auto [qmax, unchanged] = runTrapped(in, g, flow::Boundary::Wall, 20);
+  EXPECT_EQ(qmax, 0.0) << "a film beside a pile at rest must not be pushed by it";
+  EXPECT_TRUE(unchanged);
+}
