@@ -18,7 +18,7 @@ void debris_tile_diagnostics(__constant const FlowParams* p, __constant const De
                              __global const uchar* mask, __global const int* tile_list, __global const real* S,
                              __global const real* hf, __global const real* qfx, __global const real* qfy,
                              __global const real* slope_speed, __global const real* delta,
-                             __global const real* out_step,
+                             __global const real* pbed, __global const real* out_step,
                              __global real* partial, __global int* tile_wet) {
   __local real s[DIAG_MAX_ROWS * TILE_CELLS];
   __local int s_wet[TILE_CELLS];
@@ -38,8 +38,21 @@ void debris_tile_diagnostics(__constant const FlowParams* p, __constant const De
     const real K = dp->earth_pressure == EARTH_CONSTANT ? dp->k_const
                                                         : earth_pressure(phi, dp->delta_from_phi ? phi : delta[k], (real)1);
     const real area = p->dx * p->dx;
-    speed = H > (real)0 ? fmax(fabs(us) + fabs(vs), fabs(uf) + fabs(vf)) +
-                              (real)2 * (sqrt(GRAVITY * H * fmax((real)1, K)) + slope_speed[k])
+    real w = slope_speed[k];
+#ifdef DEBRIS_OBSTACLE
+#if DEBRIS_OBSTACLE
+    // Hybrid mode: the particle bed's steps accelerate the flow as the DEM's slope does; its slope
+    // speed sqrt(g |dH_c|) from the largest step to a neighbour (the bed moves with the particles,
+    // so this is re-evaluated each step, after the bed of the next step was written).
+    real step = 0;
+    for (int q = 0; q < 4; ++q) {
+      const int a = i + (q == 0) - (q == 1), b2 = j + (q == 2) - (q == 3);
+      if (cell_inside(p, mask, a, b2)) step = fmax(step, fabs(pbed[cell_index(p, a, b2)] - pbed[k]));
+    }
+    w += sqrt(GRAVITY * step);
+#endif
+#endif
+    speed = H > (real)0 ? fmax(fabs(us) + fabs(vs), fabs(uf) + fabs(vf)) + (real)2 * (sqrt(GRAVITY * H * fmax((real)1, K)) + w)
                         : (real)0;
 #if DEBRIS_VISCOUS
     speed += visc_speed(p, dp, mask, S, hf, qfx, qfy, i, j);

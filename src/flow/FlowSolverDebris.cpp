@@ -118,8 +118,8 @@ void FlowSolver::enqueueDebrisTrack() {
 }
 
 void FlowSolver::enqueueDebrisDiagnostics() {
-  debrisDiagnostics_.bind(params_, debrisParams_, mask_, tileList_, solid0_, h_, qx_, qy_, slopeSpeed_, delta_, outStep_,
-                          partial_, tileWet_);
+  debrisDiagnostics_.bind(params_, debrisParams_, mask_, tileList_, solid0_, h_, qx_, qy_, slopeSpeed_, delta_,
+                          particleBed_, outStep_, partial_, tileWet_);
   debrisDiagnostics_.launch(tileRange(), kLocal2D);
 }
 

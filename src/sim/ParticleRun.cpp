@@ -23,8 +23,8 @@ ParticleRun::ParticleRun(compute::Context& ctx, const Raster& dem, const Particl
   if (flow_.settings().particleBed) {
     flow_.changeDischarge([&](compute::RealBuffer& h, compute::RealBuffer& qx, compute::RealBuffer& qy) {
       solver_->exchangeWithFluid(h, qx, qy, 0.0);
+      solver_->writeGridBed(flow_.particleBed());
     });
-    solver_->writeGridBed(flow_.particleBed());
     fluidAtParticles_ = true;
   }
 }
@@ -66,12 +66,16 @@ void ParticleRun::coupleToGrid(double dt) {
   const flow::FlowDiagnostics& d = flow.diagnostics();
   const bool wet = d.volume > 0, any = wet || d.volumeSolid > 0;
   const bool bed = flow.settings().particleBed && any;
+  // The bed of the next step is written inside the edit, so the diagnostics the edit recomputes
+  // (the time step's wave speed) see it.
   if (wet || fluidAtParticles_ || bed)
     flow.changeDischarge([&](compute::RealBuffer& h, compute::RealBuffer& qx, compute::RealBuffer& qy) {
       solver_->exchangeWithFluid(h, qx, qy, dt);
+      if (flow.settings().particleBed) solver_->writeGridBed(flow.particleBed());
     });
+  else if (flow.settings().particleBed)
+    solver_->writeGridBed(flow.particleBed());
   fluidAtParticles_ = wet;
-  if (flow.settings().particleBed) solver_->writeGridBed(flow.particleBed());
 }
 
 // Layout: bookkeeping (5 doubles), the particle bed the next grid step uses (its byte count, then
@@ -106,6 +110,8 @@ void ParticleRun::restoreState(const std::vector<char>& bytes) {
   solver_->restoreState(std::vector<char>(bytes.begin() + at + bedBytes, bytes.end()));
   if (bed) {
     flow_.particleBed().raw().writeBytes(bytes.data() + at, bedBytes);
+    // The time step's wave speed includes the particle bed's slope: recompute the diagnostics.
+    flow_.changeDischarge([](compute::RealBuffer&, compute::RealBuffer&, compute::RealBuffer&) {});
     // The P2G that the pending bed impulse is shared out with: recomputed from the same positions.
     if (book[4] != 0) solver_->refreshGridTransfer();
   }
