@@ -4,6 +4,8 @@
 //   talus run --resume DIR [--device SEL] [--set "Key=Value"]... [--quiet]
 //   talus devices
 //   talus keys [--markdown]
+//   talus render MAP.tif -o MAP.png [--hillshade DEM] [--ramp NAME] [--range LO HI] [--label TEXT]
+//                [--threshold T] [--scale N]
 // Exit status: 0 success, 1 usage or unexpected error, 2 bad input, 3 compute device error,
 // 4 simulation became unstable (outputs so far are kept).
 #include <unistd.h>
@@ -15,6 +17,7 @@
 
 #include "compute/Device.hpp"
 #include "core/Error.hpp"
+#include "io/MapRender.hpp"
 #include "io/RunConfig.hpp"
 #include "sim/RunKeys.hpp"
 #include "sim/Scene.hpp"
@@ -29,6 +32,10 @@ void usage(std::FILE* f) {
                "       talus run --resume DIR [--device SEL] [--set \"Key=Value\"]... [--quiet]\n"
                "       talus devices\n"
                "       talus keys [--markdown]\n"
+               "       talus render MAP.tif -o MAP.png [--hillshade DEM.tif] [--ramp depth|heat|viridis|cohesion]\n"
+               "                    [--range LO HI] [--label TEXT] [--threshold T] [--scale PIXELS_PER_CELL]\n"
+               "         (renders an output map over the DEM's hillshade with a legend; cells <= T, default 0,\n"
+               "          and nodata show only the hillshade)\n"
                "The device can also be chosen with the environment variable TALUS_DEVICE (index or name).\n");
 }
 
@@ -143,6 +150,7 @@ int main(int argc, char** argv) {
   try {
     if (cmd == "run") return runScene(argc, argv);
     if (cmd == "devices") return listDevices();
+    if (cmd == "render") return talus::io::renderCommand(std::vector<std::string>(argv + 2, argv + argc));
     if (cmd == "keys") return listKeys(argc > 2 && !std::strcmp(argv[2], "--markdown"));
     std::fprintf(stderr, "talus: unknown command '%s'\n", cmd.c_str());
     usage(stderr);

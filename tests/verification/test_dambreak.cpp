@@ -23,6 +23,7 @@
 #include "core/Constants.hpp"
 #include "support/Analytic.hpp"
 #include "support/FlowScene.hpp"
+#include "verification/ValidationOut.hpp"
 
 namespace an = talus::analytic;
 namespace fl = talus::flow;
@@ -41,6 +42,15 @@ struct DamBreakErrors {
   int steps = 0;
   double seconds = 0;
 };
+
+/// File-name stem of a run for the validation CSVs (ValidationOut.hpp): ritter / stoker, plus
+/// _first for the first-order scheme and _hll for the HLL solver.
+std::string caseName(double hR, fl::Limiter limiter, fl::RiemannSolver riemann) {
+  std::string name = hR > 0.0 ? "stoker" : "ritter";
+  if (limiter == fl::Limiter::None) name += "_first";
+  if (riemann == fl::RiemannSolver::HLL) name += "_hll";
+  return name;
+}
 
 fl::FlowSettings dambreakSettings(fl::Limiter limiter, fl::RiemannSolver riemann) {
   fl::FlowSettings s;
@@ -82,6 +92,11 @@ DamBreakErrors runDamBreak(int nx, double hR, fl::Limiter limiter, fl::RiemannSo
     if (hRef[i] > 0.0 && run.h[i] > settings.hDry) e.errU += std::fabs(u[i] - uRef[i]) * dx;
   e.steps = run.steps;
   e.seconds = run.wallSeconds;
+  if (talus::test::validation::enabled()) {  // the profile against the exact cell averages
+    talus::test::validation::Table t({"x_m", "h_m", "h_exact_m", "u_m_s", "u_exact_m_s"});
+    for (int i = 0; i < nx; ++i) t.add({talus::test::cellX(grid, i), run.h[i], hRef[i], u[i], uRef[i]});
+    t.write(caseName(hR, limiter, riemann) + "_profile_nx" + std::to_string(nx) + ".csv");
+  }
   return e;
 }
 
@@ -101,6 +116,16 @@ std::vector<DamBreakErrors> convergenceStudy(const char* label, double hR, fl::L
     std::printf("  %d steps %.2f s\n", e.steps, e.seconds);
   }
   std::fflush(stdout);
+  if (talus::test::validation::enabled()) {
+    talus::test::validation::Table t({"nx", "dx_m", "l1_h_m2", "order_h", "l1_u_m2_s", "order_u", "steps"});
+    for (std::size_t k = 0; k < out.size(); ++k) {
+      const auto& e = out[k];
+      const double oh = k > 0 ? an::observedOrder(out[k - 1].errH, e.errH, 2.0) : std::nan("");
+      const double ou = k > 0 ? an::observedOrder(out[k - 1].errU, e.errU, 2.0) : std::nan("");
+      t.add({e.nx, kLength / e.nx, e.errH, oh, e.errU, ou, e.steps});
+    }
+    t.write(caseName(hR, limiter, riemann) + "_errors.csv");
+  }
   return out;
 }
 
@@ -154,6 +179,11 @@ TEST(DamBreak, RitterConverges) {
   std::printf("  first order nx %d: L1(h) %.4e m^2, ratio second/first %.3f\n", first.nx, first.errH,
               e.back().errH / first.errH);
   RecordProperty("ritter_l1_h_first_order", std::to_string(first.errH));
+  if (talus::test::validation::enabled()) {
+    talus::test::validation::Table t({"nx", "l1_h_second_order_m2", "l1_h_first_order_m2", "ratio"});
+    t.add({first.nx, e.back().errH, first.errH, e.back().errH / first.errH});
+    t.write("ritter_first_order.csv");
+  }
   EXPECT_LT(e.back().errH, 0.8 * first.errH);
 }
 

@@ -31,6 +31,7 @@
 #include "support/DebrisScene.hpp"
 #include "support/GranularAnalytic.hpp"
 #include "support/TestDevice.hpp"
+#include "verification/ValidationOut.hpp"
 
 namespace an = talus::analytic;
 namespace fl = talus::flow;
@@ -134,6 +135,12 @@ MangeneyError runMangeney(int nx, bool cos4) {
     e.l1 += std::fabs(st.hs[i] * dx - exact);
     e.mass += exact;
   }
+  if (talus::test::validation::enabled()) {  // the profile against exact cell averages, whole domain
+    talus::test::validation::Table t({"x_m", "hs_m", "hs_exact_m", "in_window"});
+    for (int i = 0; i < nx; ++i)
+      t.add({cellX(grid, i), st.hs[i], d.integralH(i * dx, (i + 1) * dx, kMgT) / dx, i * dx >= kMgWindow - 1e-9 ? 1 : 0});
+    t.write(std::string("mangeney_") + (cos4 ? "cos4" : "cos2") + "_profile_nx" + std::to_string(nx) + ".csv");
+  }
   return e;
 }
 
@@ -159,6 +166,13 @@ TEST(Granular, MangeneyDamBreakConverges) {
       EXPECT_LT(errs[k].l1, errs[k - 1].l1) << name << ": L1 grew from nx " << errs[k - 1].nx << " to " << errs[k].nx;
     const double order = an::observedOrder(errs[errs.size() - 2].l1, errs.back().l1, 2.0);
     RecordProperty(std::string("mangeney_") + name + "_l1_nx800", std::to_string(errs.back().l1));
+    if (talus::test::validation::enabled()) {
+      talus::test::validation::Table t({"nx", "dx_m", "l1_h_m2", "relative_l1", "order", "steps"});
+      for (std::size_t k = 0; k < errs.size(); ++k)
+        t.add({errs[k].nx, kMgL / errs[k].nx, errs[k].l1, errs[k].l1 / errs[k].mass,
+               k > 0 ? an::observedOrder(errs[k - 1].l1, errs[k].l1, 2.0) : std::nan(""), errs[k].steps});
+      t.write(std::string("mangeney_") + name + "_errors.csv");
+    }
     RecordProperty(std::string("mangeney_") + name + "_order", std::to_string(order));
     EXPECT_GE(order, kMgMinOrder) << name;
   }
@@ -226,6 +240,7 @@ struct BlockRun {
   int interiorCells = 0;   ///< largest number of interior cells seen
   double interiorUntil = 0;  ///< last time with interior cells [s]
   int steps = 0;
+  std::vector<std::vector<double>> series;  ///< t, travel, exact travel, mean velocity, exact (validation CSV only)
 };
 
 BlockRun slideBlock(double thetaDeg, double deltaDeg, fl::Limiter limiter) {
@@ -260,6 +275,7 @@ BlockRun slideBlock(double thetaDeg, double deltaDeg, fl::Limiter limiter) {
     r.travel = st.solidCentroidX(grid) - X0;
     r.centroidErrEnd = std::fabs(r.travel - xt) / xt;
     r.centroidErr = std::max(r.centroidErr, r.centroidErrEnd);
+    if (talus::test::validation::enabled()) r.series.push_back({t, r.travel, xt, P / M, ut});
     return true;
   });
   return r;
@@ -277,6 +293,18 @@ TEST(Granular, RigidBlockSlidesWithExactAcceleration) {
                 "t = %.2f s), centroid error max %.2e, at t = %.0f s %.2e\n",
                 pair[0], pair[1], a, r.travel, 0.5 * a * kBlockT * kBlockT, r.steps, r.momentumErr, r.interiorErr,
                 r.interiorCells, r.interiorUntil, r.centroidErr, kBlockT, r.centroidErrEnd);
+    if (talus::test::validation::enabled()) {
+      namespace vo = talus::test::validation;
+      vo::Table t({"t_s", "travel_m", "travel_exact_m", "velocity_m_s", "velocity_exact_m_s"});
+      for (const auto& row : r.series) t.add({row[0], row[1], row[2], row[3], row[4]});
+      const std::string tag = std::to_string(static_cast<int>(pair[0])) + "_" + std::to_string(static_cast<int>(pair[1]));
+      t.write("grid_block_series_" + tag + ".csv");
+      vo::Table e({"theta_deg", "delta_deg", "a_m_s2", "travel_m", "travel_exact_m", "momentum_error", "interior_error",
+                   "centroid_error_max", "centroid_error_end", "steps"});
+      e.add({pair[0], pair[1], a, r.travel, 0.5 * a * kBlockT * kBlockT, r.momentumErr, r.interiorErr, r.centroidErr,
+             r.centroidErrEnd, r.steps});
+      e.write("grid_block_errors_" + tag + ".csv");
+    }
     EXPECT_LE(r.momentumErr, kBlockMomentumTol) << pair[0] << "/" << pair[1];
     EXPECT_GE(r.interiorUntil, 0.5 * kBlockT) << "the block's interior should survive the smearing of its ends";
     EXPECT_LE(r.interiorErr, kBlockInteriorTol) << pair[0] << "/" << pair[1];
@@ -397,6 +425,13 @@ PileResult runPile(double dx) {
       r.to = cellX(grid, i);
       wet = true;
     }
+  if (talus::test::validation::enabled()) {
+    talus::test::validation::Table t({"x_m", "hs_initial_m", "hs_final_m"});
+    for (int i = 0; i < nx; ++i) t.add({cellX(grid, i), in.hs[i], st.hs[i]});
+    char name[64];
+    std::snprintf(name, sizeof name, "pile_profile_dx%.2f.csv", dx);
+    t.write(name);
+  }
   for (int i = 1; i + 1 < nx; ++i)
     if (st.hs[i - 1] > 0.05 * r.top && st.hs[i + 1] > 0.05 * r.top)
       r.slope = std::max(r.slope, std::fabs(st.hs[i + 1] - st.hs[i - 1]) / (2.0 * dx));
@@ -420,6 +455,15 @@ TEST(Granular, PileStopsNearReposeSlope) {
     EXPECT_EQ(r.changedAfterStop, 0) << "dx " << dx;
     EXPECT_NEAR(r.slope, repose, 0.05 * repose) << "dx " << dx;
     EXPECT_LE(r.slope, 1.02 * repose) << "dx " << dx;
+  }
+  if (talus::test::validation::enabled()) {
+    talus::test::validation::Table t({"dx_m", "t_stop_s", "final_slope", "final_slope_deg", "repose_slope",
+                                      "repose_deg", "deficit_percent"});
+    const double dxs[] = {0.02, 0.01};
+    for (std::size_t k = 0; k < results.size(); ++k)
+      t.add({dxs[k], results[k].tStop, results[k].slope, std::atan(results[k].slope) / kDeg, repose,
+             std::atan(repose) / kDeg, 100.0 * (repose - results[k].slope) / repose});
+    t.write("pile_errors.csv");
   }
   EXPECT_LT(repose - results[1].slope, repose - results[0].slope) << "the slope deficit should shrink with dx";
   std::fflush(stdout);

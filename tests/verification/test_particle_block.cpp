@@ -14,6 +14,7 @@
 #include "particles/ParticleSeeding.hpp"
 #include "particles/ParticleSolver.hpp"
 #include "support/TestDevice.hpp"
+#include "verification/ValidationOut.hpp"
 
 using namespace talus;
 using namespace talus::particles;
@@ -92,7 +93,31 @@ TEST(ParticleBlock, SlidesWithTheAnalyticKinematics) {
     const double c2 = 1.0 / (1.0 + slope * slope);
     const double a = std::max(0.0, kGravity * c2 * (slope - std::tan(delta * kDeg)));
     const double T = 1.5;
-    for (int k = 0; k < 15; ++k) solver.step(0.1);
+    namespace vo = talus::test::validation;
+    vo::Table series({"t_s", "v_mean_m_s", "v_min_m_s", "v_max_m_s", "v_exact_m_s", "x_mean_m", "x_exact_m"});
+    double x0 = 0;
+    if (vo::enabled()) {
+      const ParticleState s0 = solver.state();
+      for (std::size_t q = 0; q < s0.size(); ++q) x0 += s0.x[q] / s0.size();
+      series.add({0.0, 0.0, 0.0, 0.0, 0.0, x0, x0});
+    }
+    for (int k = 0; k < 15; ++k) {
+      solver.step(0.1);
+      if (vo::enabled()) {  // the block's velocity and centroid against v = a t, x = x0 + a t^2 / 2
+        const ParticleState sk = solver.state();
+        double vm = 0, vlo = 1e300, vhi = -1e300, xm = 0;
+        for (std::size_t q = 0; q < sk.size(); ++q) {
+          vm += sk.vx[q] / sk.size();
+          xm += sk.x[q] / sk.size();
+          vlo = std::min(vlo, sk.vx[q]);
+          vhi = std::max(vhi, sk.vx[q]);
+        }
+        const double t = 0.1 * (k + 1);
+        series.add({t, vm, vlo, vhi, a * t, xm, x0 + 0.5 * a * t * t});
+      }
+    }
+    series.write("particle_block_series_" + std::to_string(static_cast<int>(theta)) + "_" +
+                 std::to_string(static_cast<int>(delta)) + ".csv");
     const ParticleState st = solver.state();
     double err = 0, vy = 0, plastic = 0;
     for (std::size_t q = 0; q < st.size(); ++q) {
@@ -103,6 +128,11 @@ TEST(ParticleBlock, SlidesWithTheAnalyticKinematics) {
     }
     std::printf("block theta %g delta %g: a %.6f m/s^2, v(T) %.6f, max |v - a t| %.2e, |v_y| %.1e, %zu particles\n",
                 theta, delta, a, a * T, err, vy, st.size());
+    vo::Table errors({"theta_deg", "delta_deg", "a_m_s2", "v_exact_m_s", "max_abs_v_error_m_s", "max_abs_vy_m_s",
+                      "particles"});
+    errors.add({theta, delta, a, a * T, err, vy, st.size()});
+    errors.write("particle_block_errors_" + std::to_string(static_cast<int>(theta)) + "_" +
+                 std::to_string(static_cast<int>(delta)) + ".csv");
     EXPECT_LE(err, 1e-9 * std::max(1.0, a * T));
     EXPECT_LE(vy, 1e-12);
     EXPECT_EQ(plastic, 0.0);
@@ -161,5 +191,9 @@ TEST(ParticleBlock, ElasticBarOscillatesAtTheBarWaveSpeed) {
   std::printf("elastic bar: period %.4f s (bar theory %.4f s), wave speed %.2f m/s vs sqrt(E/(rho(1-nu^2))) %.2f m/s "
               "(%.2f %%), P-wave %.2f m/s\n",
               period, T, c, cBar, 100 * (c / cBar - 1), std::sqrt((ps.bulkModulus() + 4 * ps.shearModulus() / 3) / rho));
+  talus::test::validation::Table bar({"period_s", "period_bar_theory_s", "wave_speed_m_s", "bar_speed_m_s",
+                                      "relative_error", "p_wave_speed_m_s"});
+  bar.add({period, T, c, cBar, c / cBar - 1, std::sqrt((ps.bulkModulus() + 4 * ps.shearModulus() / 3) / rho)});
+  bar.write("elastic_bar.csv");
   EXPECT_NEAR(c / cBar, 1.0, 0.05);
 }

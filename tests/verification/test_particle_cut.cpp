@@ -16,6 +16,7 @@
 #include "particles/ParticleSeeding.hpp"
 #include "particles/ParticleSolver.hpp"
 #include "support/TestDevice.hpp"
+#include "verification/ValidationOut.hpp"
 
 using namespace talus;
 using namespace talus::particles;
@@ -90,6 +91,13 @@ CutResult runColumn(double H) {
   for (std::size_t q = 0; q < s.size(); ++q) r.minCohesionFraction = std::min(r.minCohesionFraction, s.cohesion[q] / s.cohesion0[q]);
   r.massError = std::fabs(solver.diagnostics().mass + outflow - m0) / m0;  // particles may leave the raster
   r.particles = s.size();
+  if (talus::test::validation::enabled()) {  // the particles at 2 s: deposit and cohesion fraction
+    talus::test::validation::Table t({"x_m", "y_m", "cohesion_fraction", "thickness_m"});
+    for (std::size_t q = 0; q < s.size(); ++q) t.add({s.x[q], s.y[q], s.cohesion[q] / s.cohesion0[q], s.H[q]});
+    char name[64];
+    std::snprintf(name, sizeof name, "cut_particles_H%.3f.csv", H);
+    t.write(name);
+  }
   return r;
 }
 
@@ -105,6 +113,18 @@ TEST(ParticleCut, ShortColumnStandsTallColumnCollapses) {
               "H = 2 H_c: max speed %.3g m/s, spread %.3f m, min c/c0 %.3f (%zu particles, mass error %.1e)\n",
               Hc, shortCol.maxSpeed, shortCol.spread, shortCol.minCohesionFraction, tallCol.maxSpeed, tallCol.spread,
               tallCol.minCohesionFraction, tallCol.particles, tallCol.massError);
+  {
+    talus::test::validation::Table t({"case", "H_m", "Hc_m", "H_over_Hc", "max_speed_m_s", "spread_m",
+                                      "min_cohesion_fraction", "particles", "mass_error", "file"});
+    char f1[64], f2[64];
+    std::snprintf(f1, sizeof f1, "cut_particles_H%.3f.csv", 0.5 * Hc);
+    std::snprintf(f2, sizeof f2, "cut_particles_H%.3f.csv", 2.0 * Hc);
+    t.add({"stands", 0.5 * Hc, Hc, 0.5, shortCol.maxSpeed, shortCol.spread, shortCol.minCohesionFraction,
+           shortCol.particles, shortCol.massError, f1});
+    t.add({"collapses", 2.0 * Hc, Hc, 2.0, tallCol.maxSpeed, tallCol.spread, tallCol.minCohesionFraction,
+           tallCol.particles, tallCol.massError, f2});
+    t.write("cut_errors.csv");
+  }
   // Standing: nothing drives it (no lateral push, inside the yield surface): exactly at rest.
   EXPECT_EQ(shortCol.maxSpeed, 0.0);
   EXPECT_EQ(shortCol.minCohesionFraction, 1.0);

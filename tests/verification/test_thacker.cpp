@@ -18,6 +18,7 @@
 
 #include "support/Analytic.hpp"
 #include "support/FlowScene.hpp"
+#include "verification/ValidationOut.hpp"
 
 namespace an = talus::analytic;
 namespace fl = talus::flow;
@@ -77,6 +78,15 @@ ThackerErrors runThacker(int n) {
   e.errCentre = std::hypot(mx / hostV - (th.xc + th.eta), my / hostV - th.yc);
   e.volumeDrift = std::fabs(run.volume - run.volume0) / run.volume0;
   e.hostVolumeDrift = std::fabs(hostV - hostV0) / hostV0;
+  if (talus::test::validation::enabled()) {  // the row through the bowl's vertex (y = yc + dx/2)
+    talus::test::validation::Table t({"x_m", "y_m", "bed_m", "h_m", "h_exact_m", "h0_m"});
+    const int j = n / 2;
+    for (int i = 0; i < n; ++i) {
+      const std::size_t k = grid.index(i, j);
+      t.add({cellX(grid, i), cellY(grid, j), th.bed(cellX(grid, i), cellY(grid, j)), run.h[k], hRef[k], input.h[k]});
+    }
+    t.write("thacker_profile_n" + std::to_string(n) + ".csv");
+  }
   return e;
 }
 
@@ -91,6 +101,17 @@ void report(const std::vector<ThackerErrors>& e) {
                 e[k].seconds);
   }
   std::fflush(stdout);
+  if (talus::test::validation::enabled()) {
+    talus::test::validation::Table t(
+        {"n", "dx_m", "l1_h_m3", "order_h", "centre_error_m", "order_centre", "volume_drift", "steps"});
+    for (std::size_t k = 0; k < e.size(); ++k) {
+      const bool o = k > 0;
+      t.add({e[k].n, kDomain / e[k].n, e[k].errH, o ? an::observedOrder(e[k - 1].errH, e[k].errH, 2.0) : std::nan(""),
+             e[k].errCentre, o ? an::observedOrder(e[k - 1].errCentre, e[k].errCentre, 2.0) : std::nan(""),
+             e[k].volumeDrift, e[k].steps});
+    }
+    t.write("thacker_errors.csv");
+  }
 }
 
 }  // namespace

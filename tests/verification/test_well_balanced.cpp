@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "support/FlowScene.hpp"
+#include "verification/ValidationOut.hpp"
 
 namespace fl = talus::flow;
 using talus::Grid;
@@ -102,6 +103,9 @@ TEST(WellBalanced, LakeAtRestRoughDem) {
   const std::vector<double> bed = roughBed(grid);
   double worstDouble = 0, worstFloat = 0, worstSurfaceDouble = 0, worstSurfaceFloat = 0;
   std::printf("[ lake at rest, 64 x 48 rough DEM, %d steps: max |u| m/s, max |eta - eta0| m ]\n", kSteps);
+  talus::test::validation::Table table(
+      {"depth_pressure", "limiter", "precision", "max_speed_m_s", "max_surface_change_m", "max_dry_depth_m", "wet_cells",
+       "dry_cells", "min_wet_depth_m"});
   for (const bool slope : {true, false})
     for (const auto limiter : {fl::Limiter::Minmod, fl::Limiter::VanLeer, fl::Limiter::MC, fl::Limiter::None})
       for (const auto precision : {Precision::Double, Precision::Float}) {
@@ -114,6 +118,8 @@ TEST(WellBalanced, LakeAtRestRoughDem) {
                                 talus::compute::precisionName(precision);
         std::printf("  %-22s |u| %.3e  surface %.3e  dry h %.1e  (%d wet, %d dry, min depth %.1e m)\n", tag.c_str(),
                     r.maxSpeed, r.maxSurface, r.maxDryDepth, r.wet, r.dry, r.minWetDepth);
+        table.add({slope ? "cos2" : "flat-g", limiterName(limiter), talus::compute::precisionName(precision),
+                   r.maxSpeed, r.maxSurface, r.maxDryDepth, r.wet, r.dry, r.minWetDepth});
         EXPECT_GT(r.dry, 0) << "the DEM must have dry islands";
         EXPECT_LT(r.maxSpeed, dbl ? kSpeedTolDouble : kSpeedTolFloat) << tag;
         EXPECT_LT(r.maxSurface, dbl ? kSurfaceTolDouble : kSurfaceTolFloat) << tag;
@@ -127,6 +133,16 @@ TEST(WellBalanced, LakeAtRestRoughDem) {
             std::max(dbl ? worstSurfaceDouble : worstSurfaceFloat, r.maxSurface);
       }
   std::fflush(stdout);
+  table.write("lake_at_rest.csv");
+  if (talus::test::validation::enabled()) {  // the bed and lake surface along the middle row, for the figure
+    talus::test::validation::Table t({"x_m", "bed_m", "surface_m"});
+    const int j = grid.ny / 2;
+    for (int i = 0; i < grid.nx; ++i) {
+      const double b = bed[grid.index(i, j)];
+      t.add({cellX(grid, i), b, std::max(b, kEta)});
+    }
+    t.write("lake_at_rest_profile.csv");
+  }
   RecordProperty("lake_max_speed_double", std::to_string(worstDouble));
   RecordProperty("lake_max_speed_float", std::to_string(worstFloat));
   RecordProperty("lake_max_surface_double", std::to_string(worstSurfaceDouble));
@@ -152,6 +168,10 @@ TEST(WellBalanced, Cos4IsNotExactOnSlopes) {
   const LakeResult cos2 = runLake(grid, bed, s, Precision::Double, steps);
   std::printf("[ lake on a 0.3 slope, %d steps ] max |u|: cos4 %.3e m/s, cos2 %.3e m/s\n", steps, cos4.maxSpeed,
               cos2.maxSpeed);
+  talus::test::validation::Table t({"depth_pressure", "steps", "max_speed_m_s"});
+  t.add({"cos4", steps, cos4.maxSpeed});
+  t.add({"cos2", steps, cos2.maxSpeed});
+  t.write("lake_on_slope_cos4.csv");
   EXPECT_GT(cos4.wet, 0);
   EXPECT_GT(cos4.dry, 0);
   EXPECT_GT(cos4.maxSpeed, 1e-6);
