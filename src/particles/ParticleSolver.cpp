@@ -103,6 +103,11 @@ ParticleSolver::ParticleSolver(compute::Context& ctx, const Grid& grid, const Pa
     if (!terrain.mask[k]) gn[k] = kGravity;
   mask_ = compute::Buffer<uint8_t>(ctx, n, "particle terrain mask");
   mask_.write(terrain.mask);
+  bed_ = compute::RealBuffer(ctx, n, "particle bed elevation");
+  std::vector<double> bed = terrain.bed;
+  for (std::size_t k = 0; k < n; ++k)
+    if (!terrain.mask[k]) bed[k] = 0.0;  // nodata cells remove particles; their value is never a wall
+  bed_.upload(bed);
   gradX_ = compute::RealBuffer(ctx, n, "bed gradient x");
   gradY_ = compute::RealBuffer(ctx, n, "bed gradient y");
   gn_ = compute::RealBuffer(ctx, n, "particle g_n");
@@ -384,7 +389,7 @@ void ParticleSolver::subStep(double ds) {
   forces_.bind(params_, ng.params(), ng.cellStart(), ng.cellEnd(), x_, y_, vx_, vy_, m_, rhoA_, Nxx_, Nyy_, Nxy_, Minv_,
                ax_, ay_);
   forces_.launch(global, kParticleGroup, "particle_forces");
-  integrate_.bind(params_, mask_, gradX_, gradY_, gn_, x_, y_, vx_, vy_, m_, delta_, ax_, ay_, A_, div_, V_, rho_, Vf_,
+  integrate_.bind(params_, mask_, bed_, gradX_, gradY_, gn_, x_, y_, vx_, vy_, m_, delta_, ax_, ay_, A_, div_, V_, rho_, Vf_,
                   Vf0_, coh_, coh0_, released_, fluidDepth_, outMass_, compute::RealArg{ds});
   integrate_.launch(global, kParticleGroup, "particle_integrate");
   diag_.outflowMass += reducer_.sum(outMass_, count_);
