@@ -4,6 +4,9 @@
 // volumes and outflow of each phase, kinetic energy (J, both phases), smallest thickness; and per
 // cell the maxima of each phase's thickness and speed, of the total thickness, the solid fraction
 // and the impact pressure rho_m |u_m|^2 of the mixture, and the arrival time of the mixture.
+#ifndef DEBRIS_OBSTACLE
+#define DEBRIS_OBSTACLE 0
+#endif
 #include "flow/diagnostics.cl"
 #include "flow/debris_closures.cl"
 #ifndef DEBRIS_VISCOUS
@@ -39,7 +42,6 @@ void debris_tile_diagnostics(__constant const FlowParams* p, __constant const De
                                                         : earth_pressure(phi, dp->delta_from_phi ? phi : delta[k], (real)1);
     const real area = p->dx * p->dx;
     real w = slope_speed[k];
-#ifdef DEBRIS_OBSTACLE
 #if DEBRIS_OBSTACLE
     // Hybrid mode: the particle bed's steps accelerate the flow as the DEM's slope does; its slope
     // speed sqrt(g |dH_c|) from the largest step to a neighbour (the bed moves with the particles,
@@ -50,7 +52,6 @@ void debris_tile_diagnostics(__constant const FlowParams* p, __constant const De
       if (cell_inside(p, mask, a, b2)) step = fmax(step, fabs(pbed[cell_index(p, a, b2)] - pbed[k]));
     }
     w += sqrt(GRAVITY * step);
-#endif
 #endif
     speed = H > (real)0 ? fmax(fabs(us) + fabs(vs), fabs(uf) + fabs(vf)) + (real)2 * (sqrt(GRAVITY * H * fmax((real)1, K)) + w)
                         : (real)0;

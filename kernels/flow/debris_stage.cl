@@ -292,22 +292,17 @@ __kernel void debris_stage(__constant const FlowParams* p, __constant const Debr
 #if DEBRIS_OBSTACLE
     {
       // The fluid's bed force on this cell's bed, from the face corrections of the neighbours'
-      // fluid (a step up into this cell pushes their fluid away and this cell's bed on) and from
-      // this cell's own fluid on its bed slope (below): the part the particles make of each step.
+      // fluid (a step up into this cell pushes their fluid away and this cell's bed on): the part
+      // the particles make of each step.
       const real Bk = c0.ef - c0.hf, Bm = cm.ef - cm.hf, Bp = cp.ef - cp.hf;
       if (m_in) react_f[dir] += gm * Fm.corr_m * particle_share(Hc_k - pbed[km], Bk - Bm, Hc_k);
       if (p_in) react_f[dir] -= gpp * Fp.corr_p * particle_share(Hc_k - pbed[kp], Bk - Bp, Hc_k);
     }
 #endif
+    // (The fluid is first order on and next to the particle bed, so the bed-slope term below is zero
+    // in every cell with particles: the face corrections above carry all of their share.)
     if (c0.hf > (real)0) {
-      const real bed_force = g * (real)0.5 * (own.lo.hf + own.hi.hf) * ((own.hi.ef - own.hi.hf) - (own.lo.ef - own.lo.hf));
-      sf += bed_force;
-#if DEBRIS_OBSTACLE
-      if (Hc_k > (real)0 && m_in && p_in) {
-        const real dB = (cp.ef - cp.hf) - (cm.ef - cm.hf), dH = pbed[kp] - pbed[km];
-        react_f[dir] += bed_force * (dB * dH > (real)0 ? fmin(dH / dB, (real)1) : (real)0);
-      }
-#endif
+      sf += g * (real)0.5 * (own.lo.hf + own.hi.hf) * ((own.hi.ef - own.hi.hf) - (own.lo.ef - own.lo.hf));
       const real dg = g - gnk;
       if (dg != (real)0 && m_in && p_in) sf -= dg * c0.hf * (real)0.5 * (b[kp] - b[km]);
     }

@@ -101,6 +101,9 @@ class FlowSolver {
   /// Changes only the discharge of wet cells (drag with particles); the diagnostics are recomputed
   /// over the active tiles.
   void changeDischarge(const FluidEdit& change);
+  /// Recomputes the diagnostics (the next time step) over the active tiles, after an input they
+  /// depend on changed outside the solver (the particle bed restored from a checkpoint).
+  void refreshDiagnostics() { computeDiagnostics(); }
   /// Hybrid mode (FlowSettings::particleBed): the particles' confined phase as the grid sees it,
   /// 3 x cells (H_c [m], then u_c and v_c [m/s]), written by the particle run before each step; and
   /// the impulse the grid phases gave it in the last step, 2 x cells (x, y, momentum per area

@@ -111,7 +111,7 @@ void ParticleRun::restoreState(const std::vector<char>& bytes) {
   if (bed) {
     flow_.particleBed().raw().writeBytes(bytes.data() + at, bedBytes);
     // The time step's wave speed includes the particle bed's slope: recompute the diagnostics.
-    flow_.changeDischarge([](compute::RealBuffer&, compute::RealBuffer&, compute::RealBuffer&) {});
+    flow_.refreshDiagnostics();
     // The P2G that the pending bed impulse is shared out with: recomputed from the same positions.
     if (book[4] != 0) solver_->refreshGridTransfer();
   }
