@@ -1,15 +1,23 @@
-// Internal accelerations of the particles (spec §5, OpenLISEM Hazard P.78 with P.83-P.86):
-//   dv_i/dt = sum_j m_j (N_i / rhoA_i^2 + N_j / rhoA_j^2 + f_ij^n R_ij - Pi_ij I) . G_ij,
-// with the corrected, antisymmetrised kernel gradient G_ij = (M_i^-1 + M_j^-1) / 2 grad_i W_ij (Bonet &
-// Lok 1999; M from particle_stress): on the R2 particle layouts with h = 2 dp the plain gradient
-// underestimates the stiffness (an elastic bar rang 5 % slow), the corrected one is exact for linear
-// fields and, being antisymmetric (G_ji = -G_ij), still conserves momentum to round-off.
+// Internal accelerations of the particles (spec §5, OpenLISEM Hazard P.78 with P.83-P.86).
+// The stress term is the one the strain rate of particle_stress implies (variational consistency,
+// Bonet & Lok 1999): particle_stress takes L_i = sum_j A_j (v_j - v_i) (x) C_i g_ij with
+// g_ij = grad_i W_ij and C_i = M_i^-1 its kernel-gradient correction (symmetric), so the stress power
+// sum_i A_i N_i : L_i is minus the power of the forces
+//   F_i = A_i sum_j A_j (N_i C_i + N_j C_j) g_ij,   dv_i/dt = F_i / m_i,
+// each particle's stress paired with its own correction. F_ij = -F_ji (g_ji = -g_ij), so momentum is
+// conserved to round-off, and the elastic energy the stress stores is exactly the work the forces do:
+// no mode can gain energy. (The earlier form (N_i + N_j)(C_i + C_j)/2 was not the adjoint of the
+// strain rate: near free edges and corners, where C departs from I, a stress-free block sliding on a
+// DEM with float round-off in its slope grew a single-particle oscillation exponentially, e-folding in
+// ~100 sub-steps, until the particle failed in tension and the block cracked along its edges.)
 // N = H (sigma + sigma_lat I) the depth-integrated in-plane stress (tension positive; from
-// particle_stress), rhoA the areal density. Each pair term is antisymmetric in (i, j) (grad_i W_ij =
-// -grad_j W_ji, the bracket is symmetric), so the internal forces conserve momentum to round-off.
+// particle_stress), A the area a particle stands for, m its mass. With C = I and A_j = m_j / rhoA_j
+// this is the usual sum_j m_j (N_i + N_j) g_ij / (rhoA_i rhoA_j), P.78.
+// The regularising terms use the antisymmetrised gradient G_ij = (C_i + C_j) / 2 g_ij:
+//   dv_i/dt += sum_j m_j (f_ij^n R_ij - Pi_ij I) . G_ij,
 // - Pi_ij (Monaghan 1992): for approaching pairs, mu = h v_ij . x_ij / (r^2 + 0.01 h^2) < 0,
-//   Pi_ij = (-alpha c mu + beta mu^2) / mean(rhoA), a pressure-like repulsion (the sign convention
-//   of the bracket above: Pi_ij >= 0 pushes the pair apart).
+//   Pi_ij = (-alpha c mu + beta mu^2) / mean(rhoA), a pressure-like repulsion (Pi_ij >= 0 pushes the
+//   pair apart).
 // - R_ij = R_i + R_j (Gray, Monaghan & Swift 2001): in the principal frame of N_i / rhoA_i^2, each
 //   tensile principal value s > 0 gives -eps s, compressive ones 0; rotated back. f_ij = W_ij / W(dp),
 //   dp the mean particle spacing. It acts only in tension, against the tensile clumping instability.
@@ -30,7 +38,7 @@ inline real4 artificial_stress(real eps, real sxx, real syy, real sxy) {
 __kernel void particle_forces(__constant const ParticleParams* p, __constant const NeighbourGridParams* ng,
                               __global const uint* cell_start, __global const uint* cell_end,
                               __global const real* x, __global const real* y, __global const real* vx,
-                              __global const real* vy, __global const real* m, __global const real* rhoA,
+                              __global const real* vy, __global const real* m, __global const real* A, __global const real* rhoA,
                               __global const real* Nxx, __global const real* Nyy, __global const real* Nxy,
                               __global const real* Minv, __global real* ax, __global real* ay) {
   const int i = get_global_id(0);
@@ -42,20 +50,29 @@ __kernel void particle_forces(__constant const ParticleParams* p, __constant con
   const real4 Ri = p->eps_art > (real)0 ? artificial_stress(p->eps_art, Sxx, Syy, Sxy) : (real4)(0);
   const int cap = p->count;  // stride of the Minv rows
   const real ai00 = Minv[i], ai01 = Minv[cap + i], ai11 = Minv[2 * cap + i];
-  real accx = 0, accy = 0;
+  const real nixx = Nxx[i], niyy = Nyy[i], nixy = Nxy[i];
+  real accx = 0, accy = 0;  // regularising terms, sum_j m_j (...) . G_ij
+  real fx = 0, fy = 0;      // stress term, sum_j A_j (N_i C_i + N_j C_j) g_ij
   FOR_EACH_NEARBY_PARTICLE(ng, cell_start, cell_end, xi, yi, j) {
     if (j == (uint)i) continue;
     const real dx = xi - x[j], dy = yi - y[j], r2 = dx * dx + dy * dy;
     if (r2 >= r2max) continue;
     const real r = sqrt(r2);
     const real2 g0 = sph_grad((real2)(dx, dy), h);
-    const real c00 = (real)0.5 * (ai00 + Minv[j]), c01 = (real)0.5 * (ai01 + Minv[cap + j]);
-    const real c11 = (real)0.5 * (ai11 + Minv[2 * cap + j]);
+    // Stress term: N_i C_i g + N_j C_j g.
+    const real ux = ai00 * g0.x + ai01 * g0.y, uy = ai01 * g0.x + ai11 * g0.y;
+    const real bj00 = Minv[j], bj01 = Minv[cap + j], bj11 = Minv[2 * cap + j];
+    const real wx = bj00 * g0.x + bj01 * g0.y, wy = bj01 * g0.x + bj11 * g0.y;
+    const real njxx = Nxx[j], njyy = Nyy[j], njxy = Nxy[j];
+    fx += A[j] * (nixx * ux + nixy * uy + njxx * wx + njxy * wy);
+    fy += A[j] * (nixy * ux + niyy * uy + njxy * wx + njyy * wy);
+    // Regularising terms with G_ij.
+    const real c00 = (real)0.5 * (ai00 + bj00), c01 = (real)0.5 * (ai01 + bj01), c11 = (real)0.5 * (ai11 + bj11);
     const real2 gw = (real2)(c00 * g0.x + c01 * g0.y, c01 * g0.x + c11 * g0.y);
-    const real rj2 = rhoA[j] * rhoA[j];
-    real txx = Sxx + Nxx[j] / rj2, tyy = Syy + Nyy[j] / rj2, txy = Sxy + Nxy[j] / rj2;
+    real txx = 0, tyy = 0, txy = 0;
     if (p->eps_art > (real)0) {
-      const real4 Rj = artificial_stress(p->eps_art, Nxx[j] / rj2, Nyy[j] / rj2, Nxy[j] / rj2);
+      const real rj2 = rhoA[j] * rhoA[j];
+      const real4 Rj = artificial_stress(p->eps_art, njxx / rj2, njyy / rj2, njxy / rj2);
       const real f = sph_w(r, h) / p->w_spacing;
       real fn = (real)1;
       for (int k = 0; k < (int)p->n_art; ++k) fn *= f;
@@ -73,6 +90,7 @@ __kernel void particle_forces(__constant const ParticleParams* p, __constant con
     accx += m[j] * (txx * gw.x + txy * gw.y);
     accy += m[j] * (txy * gw.x + tyy * gw.y);
   }
-  ax[i] = accx;
-  ay[i] = accy;
+  const real s = A[i] / m[i];
+  ax[i] = accx + s * fx;
+  ay[i] = accy + s * fy;
 }

@@ -25,6 +25,7 @@
 
 #include <algorithm>
 #include <cinttypes>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
@@ -259,7 +260,9 @@ TEST(StressGenerator, SceneIsAFunctionOfTheSeed) {
 // runs when the suite was written). The mechanisms were identified by re-running the scene with one
 // setting changed (noted per case) and fixed: A and D by the bed-slope speed in the CFL condition
 // (diagnostics.cl), B by restricting CFL to (0, 0.5], C by the wave speed with g >= any face's g_p,
-// E by first-order reconstruction at wet/dry fronts (flow_common.cl). They stay as regressions.
+// E by first-order reconstruction at wet/dry fronts (flow_common.cl), F (two-phase, hand-built scenes)
+// by limiting the solids' bed slope by the drop to the downhill neighbour (debris_stage.cl). They
+// stay as regressions.
 // ------------------------------------------------------------------------------------------------
 namespace {
 
@@ -327,3 +330,78 @@ TEST(StressRegression, Cos4DepthPressureSource) { runRegressions({15021095773068
 // holds all its water but has q = (0.076, 0.005) m^2/s, E_kin = 0.19 m^5/s^2 with g dP = 0. With
 // Limiter=none or minmod the water flows east in the same step.
 TEST(StressRegression, MusclOnSteepSlopeBlocksFlowAndCreatesEnergy) { runRegressions({10235720213178350295ull}); }
+
+// F. Two-phase: the solids' bed force -g_n h_s db/dx (spec §4) took the centred difference of b,
+// which at the foot of a cliff is half the cliff's height per cell, while the solids there only move
+// along the floor and release the floor's drop. Found by the two-phase soak (debris seed
+// 1831978469862991015, a Cliffs base scene): a 0.08 m mixture at the foot of a 64 m cliff, on a
+// floor whose downhill neighbour (by the centred gradient) lay 2.7 cm higher, was pushed at 0.15 g
+// and had 5.8 times the bound E_kin <= 2 (E_kin(0) + g dP+) after one step, in dt as well (dt / 4:
+// 1.6 times, dt / 16: 1.2 times the bound after 3 steps: a spatial, not a time-stepping error).
+// Fixed in kernels/flow/debris_stage.cl: the centred difference is limited by the drop to the
+// downhill neighbour. Two hand-built scenes of 5x3 cells of 10 m, a 60 m cliff east of a floor cell
+// (i = 2) whose west neighbour lies 3 cm higher (a) or 3 cm lower (b), rigid solids (cohesion 1 MPa:
+// no lateral pressure) with phi = delta = 20 degrees, walls all round. The centred difference pushes
+// the solids west at g_n * 3 = 0.3 g against friction 0.036 g.
+// (a) Solids only, 0.08 m, their surface above the 3 cm rim (so the earlier pit rule, "the downhill
+//     neighbour rises above the solid surface", does not hold them): the floor rises towards the
+//     only side the force points to, so nothing may move. Exact expectation (as in
+//     tests/verification/test_solid_traps.cpp): momentum exactly zero, thickness bitwise unchanged.
+// (b) The seed's mixture, 0.08 m of solids and 0.016 m of fluid, on a floor falling 3 cm to the
+//     west: friction holds the solids on that 0.003 slope, the fluid spreads over the floor. Run
+//     through the two-phase stress checker (runDebrisScene, 100 steps): volume balance per phase,
+//     positivity and the energy bound; the bound is the checker's own (2 (E_kin(0) + g dP+) plus
+//     rounding): nothing here may gain energy the spreading fluid does not release.
+namespace {
+
+tt::StressScene cliffFootScene(double floorStep, double hf) {
+  tt::StressScene sc;
+  sc.family = StressFamily::Debris;
+  sc.grid = talus::Grid::make(5, 3, 10.0);
+  const talus::Grid& g = sc.grid;
+  const std::size_t n = g.cells();
+  talus::flow::FlowInput& in = sc.input;
+  in.mask.assign(n, 1);
+  in.bed.assign(n, 0.0);
+  in.manning.assign(n, 0.03);
+  in.h.assign(n, 0.0);
+  in.hs.assign(n, 0.0);
+  in.phi.assign(n, 20.0 * 3.14159265358979323846 / 180.0);
+  in.delta = in.phi;
+  in.cohesion.assign(n, 1e6);
+  in.rhoS.assign(n, 2000.0);
+  in.grain.assign(n, 0.005);
+  const double bedX[5] = {2 * floorStep, floorStep, 0.0, 60.0, 60.0};
+  for (int j = 0; j < g.ny; ++j)
+    for (int i = 0; i < g.nx; ++i) in.bed[g.index(i, j)] = bedX[i];
+  for (int j = 0; j < g.ny; ++j) in.hs[g.index(2, j)] = 0.08, in.h[g.index(2, j)] = hf;
+  sc.settings.twoPhase = true;
+  sc.settings.edge = talus::flow::Boundary::Wall;
+  sc.settings.debris.earthPressure = talus::flow::EarthPressure::Constant;
+  sc.steps = 100;
+  sc.description = "cliff foot: floor step " + std::to_string(floorStep) + " m, h_f " + std::to_string(hf) + " m";
+  return sc;
+}
+
+}  // namespace
+
+TEST(StressRegression, DebrisBedForceAtTheFootOfACliff) {
+  if (envSet("TALUS_STRESS_DEBRIS_SEED") || envSet("TALUS_STRESS_SEED")) GTEST_SKIP() << "one seeded scene only";
+  {
+    const tt::StressScene sc = cliffFootScene(+0.03, 0.0);
+    talus::flow::FlowSolver solver(tt::testContext(sc.precision), sc.grid, sc.settings);
+    solver.setInput(sc.input);
+    for (int st = 0; st < sc.steps; ++st) solver.step(solver.stableDt());
+    const std::vector<double> hs = solver.hs(), qx = solver.qsx(), qy = solver.qsy();
+    double qmax = 0;
+    for (std::size_t k = 0; k < hs.size(); ++k) qmax = std::max(qmax, std::hypot(qx[k], qy[k]));
+    EXPECT_EQ(qmax, 0.0) << "solids at the foot of a cliff on a floor rising away from it must stay at rest";
+    EXPECT_TRUE(hs == sc.input.hs);
+  }
+  {
+    const tt::StressScene sc = cliffFootScene(-0.03, 0.016);
+    const tt::StressOutcome o = tt::runStressScene(sc);
+    EXPECT_TRUE(o.ok) << o.failure << "\n  scene: " << sc.description;
+    EXPECT_GT(o.steps, 0);
+  }
+}
