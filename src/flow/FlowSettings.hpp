@@ -37,7 +37,7 @@ struct DebrisSettings {
 };
 
 struct FlowSettings {
-  Limiter limiter = Limiter::VanLeer;
+  Limiter limiter = Limiter::MC;  // on the accuracy-per-cost front (docs/validation_parts/pareto.md)
   RiemannSolver riemann = RiemannSolver::HLLC;
   double cfl = 0.5;                 ///< dt = cfl * dx / max((|u| + c) + (|v| + c))
   double hDry = 1e-6;               ///< [m] below this, velocities are zero

@@ -180,7 +180,7 @@ void addNumericsKeys(KeyRegistry& r) {
   Section(r, "Numerics")
       << real("CFL", "0.5", "-", 0.01, 0.5,
               "Courant number over the sum of both directions' wave speeds (0.5 keeps the scheme positive)")
-      << choice("Limiter", {"minmod", "vanleer", "mc", "none"}, "vanleer",
+      << choice("Limiter", {"minmod", "vanleer", "mc", "none"}, "mc",
                 "slope limiter of the MUSCL reconstruction (none: first-order scheme, for comparisons)")
       << choice("Riemann Solver", {"hll", "hllc"}, "hllc", "approximate Riemann solver of the fluxes")
       << choice("Precision", {"float", "double"}, "float", "floating-point precision on the device")

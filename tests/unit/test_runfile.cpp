@@ -103,7 +103,7 @@ TEST_F(RunFile, DefaultsApplyToKeysNotGiven) {
   EXPECT_DOUBLE_EQ(c.real("Timestep"), 10);
   EXPECT_DOUBLE_EQ(c.real("Minimum Flow Height"), 1e-6);
   EXPECT_DOUBLE_EQ(c.real("Arrival Threshold"), 0.01);
-  EXPECT_EQ(c.choice("Limiter"), "vanleer");
+  EXPECT_EQ(c.choice("Limiter"), "mc");
   EXPECT_EQ(c.choice("Riemann Solver"), "hllc");
   EXPECT_EQ(c.choice("Precision"), "float");
   EXPECT_EQ(c.choice("Boundary Type"), "open");
