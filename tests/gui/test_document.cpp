@@ -22,7 +22,7 @@ TEST(RunFileDocument, EditsAreSavedInRunFileSyntax) {
   EXPECT_EQ(doc.value("Manning"), "0.01");  // the default
   EXPECT_FALSE(doc.isGiven("Manning"));
   doc.setValue("CFL", "0.4");
-  doc.setValue("Limiter", "vanleer");  // equals the default: adds nothing
+  doc.setValue("Limiter", "mc");  // equals the default: adds nothing
   doc.setValue("Arrival Threshold", "0.05");
   doc.setValue("Manning", "0.03");  // its [Flow] section does not exist yet
   EXPECT_TRUE(doc.isModified());
