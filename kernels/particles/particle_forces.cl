@@ -46,8 +46,8 @@ __kernel void particle_forces(__constant const ParticleParams* p, __constant con
   const real h = p->h, r2max = (real)4 * h * h;
   const real xi = x[i], yi = y[i], vxi = vx[i], vyi = vy[i];
   const real ri2 = rhoA[i] * rhoA[i];
-  const real Sxx = Nxx[i] / ri2, Syy = Nyy[i] / ri2, Sxy = Nxy[i] / ri2;
-  const real4 Ri = p->eps_art > (real)0 ? artificial_stress(p->eps_art, Sxx, Syy, Sxy) : (real4)(0);
+  const real4 Ri = p->eps_art > (real)0 ? artificial_stress(p->eps_art, Nxx[i] / ri2, Nyy[i] / ri2, Nxy[i] / ri2)
+                                        : (real4)(0);
   const int cap = p->count;  // stride of the Minv rows
   const real ai00 = Minv[i], ai01 = Minv[cap + i], ai11 = Minv[2 * cap + i];
   const real nixx = Nxx[i], niyy = Nyy[i], nixy = Nxy[i];
@@ -57,7 +57,6 @@ __kernel void particle_forces(__constant const ParticleParams* p, __constant con
     if (j == (uint)i) continue;
     const real dx = xi - x[j], dy = yi - y[j], r2 = dx * dx + dy * dy;
     if (r2 >= r2max) continue;
-    const real r = sqrt(r2);
     const real2 g0 = sph_grad((real2)(dx, dy), h);
     // Stress term: N_i C_i g + N_j C_j g.
     const real ux = ai00 * g0.x + ai01 * g0.y, uy = ai01 * g0.x + ai11 * g0.y;
@@ -66,14 +65,12 @@ __kernel void particle_forces(__constant const ParticleParams* p, __constant con
     const real njxx = Nxx[j], njyy = Nyy[j], njxy = Nxy[j];
     fx += A[j] * (nixx * ux + nixy * uy + njxx * wx + njxy * wy);
     fy += A[j] * (nixy * ux + niyy * uy + njxy * wx + njyy * wy);
-    // Regularising terms with G_ij.
-    const real c00 = (real)0.5 * (ai00 + bj00), c01 = (real)0.5 * (ai01 + bj01), c11 = (real)0.5 * (ai11 + bj11);
-    const real2 gw = (real2)(c00 * g0.x + c01 * g0.y, c01 * g0.x + c11 * g0.y);
+    // Regularising terms with G_ij (most pairs have none: no tension, not approaching).
     real txx = 0, tyy = 0, txy = 0;
     if (p->eps_art > (real)0) {
       const real rj2 = rhoA[j] * rhoA[j];
       const real4 Rj = artificial_stress(p->eps_art, njxx / rj2, njyy / rj2, njxy / rj2);
-      const real f = sph_w(r, h) / p->w_spacing;
+      const real f = sph_w(sqrt(r2), h) / p->w_spacing;
       real fn = (real)1;
       for (int k = 0; k < (int)p->n_art; ++k) fn *= f;
       txx += fn * (Ri.x + Rj.x);
@@ -87,8 +84,12 @@ __kernel void particle_forces(__constant const ParticleParams* p, __constant con
       txx -= pi;
       tyy -= pi;
     }
-    accx += m[j] * (txx * gw.x + txy * gw.y);
-    accy += m[j] * (txy * gw.x + tyy * gw.y);
+    if (txx != (real)0 || tyy != (real)0 || txy != (real)0) {
+      const real c00 = (real)0.5 * (ai00 + bj00), c01 = (real)0.5 * (ai01 + bj01), c11 = (real)0.5 * (ai11 + bj11);
+      const real gx = c00 * g0.x + c01 * g0.y, gy = c01 * g0.x + c11 * g0.y;
+      accx += m[j] * (txx * gx + txy * gy);
+      accy += m[j] * (txy * gx + tyy * gy);
+    }
   }
   const real s = A[i] / m[i];
   ax[i] = accx + s * fx;
