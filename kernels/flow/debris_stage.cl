@@ -5,8 +5,10 @@
 //   which is exactly the fluid-pressure force -g_p h_f dH/dx - g_n h_f db/dx - (1/2) g_p H^2 dalpha_s/dx
 //   of spec §4 (hydrostatic reconstruction over b + h_s: a fluid or mixture at rest stays at rest).
 // Solids (h_s, q_s): flux h_s u_s^2 + h_s Pi with the lateral pressure Pi = max(0, K (1 - gamma) g_p H/2
-//   - 2 c sqrt(K) / rho_s) (Savage-Hutter with Bell's cohesion reduction, OpenLISEM P.43), hydrostatic
-//   reconstruction over b, the bed term -g_n h_s db/dx and the buoyancy -gamma g_p h_s dH/dx.
+//   - 2 c sqrt(K) / rho_s) (Savage-Hutter with Bell's cohesion reduction, OpenLISEM P.43), the bed term
+//   -g_n h_s db/dx and the buoyancy -gamma g_p h_s dH/dx; the bed as the solids feel it (terrain-following
+//   gravity with the bed's curvature, the reconstructed bed, the faces between different beds and the
+//   walls they make) is in solid_bed.cl.
 // Passive scalars carried with the solids (conserved as h_s * value): tan of nothing, but the
 //   internal friction angle phi, the solid density rho_s and the grain size d, upwinded.
 // Sources S (implicit, per stage, first order in time): Coulomb friction tan(delta) (1 - B gamma_eff)
@@ -29,6 +31,7 @@
 //   friction cannot hold starts to move in the next stage.
 #include "flow/debris_closures.cl"
 #include "flow/riemann.cl"
+#include "flow/solid_bed.cl"
 #ifndef DEBRIS_VISCOUS
 #define DEBRIS_VISCOUS 0
 #endif
@@ -63,6 +66,7 @@ typedef struct {
   real hs, es, us, vs;  // solid thickness, bed b (primitive) / solid surface b + h_s (faces), velocities
   real hf, ef, uf, vf;  // fluid thickness, mixture surface b + h_s + h_f, velocities
   real hc;              // particle bed H_c (hybrid mode; 0 otherwise)
+  real zb;              // the solids' bed: cell value (primitive) / reconstructed face value (faces)
 } Prim2;
 
 typedef struct {
@@ -75,6 +79,7 @@ inline Prim2 load_prim2(__constant const FlowParams* p, __constant const DebrisP
   Prim2 c;
   c.hs = S[k];
   c.es = BED(k);
+  c.zb = c.es;
 #if DEBRIS_OBSTACLE
   c.hc = pbed[k];
 #else
@@ -99,10 +104,15 @@ inline Faces2 reconstruct2(Prim2 m, int m_in, Prim2 c, Prim2 p, int p_in) {
   const Prim s0 = {c.hs, c.es, c.us, c.vs}, sm = {m.hs, m.es, m.us, m.vs}, sp = {p.hs, p.es, p.us, p.vs};
   const Prim f0 = {c.hf, c.ef, c.uf, c.vf}, fm = {m.hf, m.ef, m.uf, m.vf}, fp = {p.hf, p.ef, p.uf, p.vf};
   const int on_bed = c.hc > (real)0 || (m_in && m.hc > (real)0) || (p_in && p.hc > (real)0);
-  const CellFaces s = reconstruct(sm, m_in, s0, sp, p_in), f = reconstruct(fm, m_in && !on_bed, f0, fp, p_in && !on_bed);
+  CellFaces s = reconstruct(sm, m_in, s0, sp, p_in);
+  const CellFaces f = reconstruct(fm, m_in && !on_bed, f0, fp, p_in && !on_bed);
+  // The solids' bed: reconstructed whatever the solids around (solid_bed.cl, point 2).
+  const real rise = bed_rise(m.es, m_in, c.es, p.es, p_in);
+  s.e_lo = c.es - (real)0.5 * rise;
+  s.e_hi = c.es + (real)0.5 * rise;
   Faces2 r;
-  r.lo = (Prim2){s.h_lo, s.h_lo + s.e_lo, s.un_lo, s.ut_lo, f.h_lo, f.e_lo, f.un_lo, f.ut_lo, c.hc};
-  r.hi = (Prim2){s.h_hi, s.h_hi + s.e_hi, s.un_hi, s.ut_hi, f.h_hi, f.e_hi, f.un_hi, f.ut_hi, c.hc};
+  r.lo = (Prim2){s.h_lo, s.h_lo + s.e_lo, s.un_lo, s.ut_lo, f.h_lo, f.e_lo, f.un_lo, f.ut_lo, c.hc, s.e_lo};
+  r.hi = (Prim2){s.h_hi, s.h_hi + s.e_hi, s.un_hi, s.ut_hi, f.h_hi, f.e_hi, f.un_hi, f.ut_hi, c.hc, s.e_hi};
   return r;
 }
 
@@ -134,40 +144,19 @@ inline real lateral_pressure(real K, Material m, real g, real H) {
   return fmax((real)0, (real)0.5 * K * ((real)1 - m.gamma) * g * H - (real)2 * m.c_over_rho * sqrt(K));
 }
 
-/// A solid side is a Side whose last member holds the lateral pressure Pi instead of g.
-typedef Side SolidSide;
-#define SIDE_PI g
+/// Pressure slope a = K (1 - gamma) g_p / 2 and cohesion term c0 = 2 c sqrt(K) / rho_s of the lateral
+/// pressure Pi = max(0, a H - c0) (see lateral_pressure), for a solid side of solid_bed.cl.
+inline SolidSide solid_side(real h, real z, real un, real ut, real hf, real K, Material m, real g, real geff) {
+  const SolidSide s = {h, z, un, ut, (real)0.5 * K * ((real)1 - m.gamma) * g, (real)2 * m.c_over_rho * sqrt(K), hf, geff};
+  return s;
+}
 
-/// Solid flux through a face (conventions of face_between in riemann.cl); the pressure part is
-/// dimensional (h* Pi) and shared by both cells. `locked`: no solid mass crosses (both sides static
-/// or empty). The hydrostatic reconstruction (h* over the higher face bed) keeps solids from
-/// climbing bed steps higher than their surface.
-inline Face solid_face(int m_in, SolidSide m, int p_in, SolidSide p, int kind, int locked) {
-  Face f = {0, 0, 0, 0, 0, 0};
-  if (!m_in && !p_in) return f;
-  const int wall = ghost_sides(m_in, &m, p_in, &p, kind);
-  const real bs = fmax(m.e - m.h, p.e - p.h);
-  const real hm = fmax((real)0, m.e - bs), hp = fmax((real)0, p.e - bs);
-  if (hm > (real)0 || hp > (real)0) {
-    const real2 s = wave_speeds(hm, m.un, sqrt((real)2 * m.SIDE_PI), hp, p.un, sqrt((real)2 * p.SIDE_PI));
-    const FaceFlux r = hll_core(hm, m.un, m.ut, hm * m.SIDE_PI, hp, p.un, p.ut, hp * p.SIDE_PI, s);
-    f.fh = (wall || locked) ? (real)0 : r.fh;
-    f.fqn = r.fqn;
-    f.fqt = (wall || locked) ? (real)0 : r.fqt;
-    // Between two static cells of very different face thickness (one side below a tenth of the
-    // other) the face carries the smaller side's pressure: material at rest pushes a thin layer
-    // beside it only as hard as that layer pushes back. The HLL average would load the layer with a
-    // share of the thick side's pressure, which its tiny mass turns into absurd speeds (found: a
-    // 0.1 mm film at 180 m/s beside a 0.5 m pile at rest on steep terrain, data/kot_debrisflow at
-    // t = 112 s). Above a tenth, the HLL pressure accelerates the thinner side by at most a few g,
-    // which friction weighs as before (a pile that friction cannot hold still starts to move).
-    const int contrast = fmin(hm, hp) < (real)0.1 * fmax(hm, hp);
-    f.p = (locked && contrast) ? fmin(hm * m.SIDE_PI, hp * p.SIDE_PI) : r.p;
-  }
-  // No hydrostatic corrections: the solids' bed force is the cell-centre gradient (see the stage),
-  // so the face pressure must be the one both cells share (momentum-conserving); adding each side's
-  // (h - h*) Pi would push every cell of a steep staircase downhill a second time.
-  return f;
+/// terrain_factor (solid_bed.cl) of cell k with its solid velocity in state S.
+inline real cell_factor(__constant const FlowParams* p, __constant const DebrisParams* dp, __global const real* curv,
+                        __global const real* S, int n, int k) {
+  const real hs = S[k];
+  const real u = solid_velocity(hs, S[n + k], p->h_dry, dp->film_h), v = solid_velocity(hs, S[2 * n + k], p->h_dry, dp->film_h);
+  return terrain_factor(curv, n, k, u, v);
 }
 
 /// Exact relaxation of the phase velocities by drag with virtual mass over ds (momentum-conserving):
@@ -204,7 +193,7 @@ inline void drag_relax(__constant const DebrisParams* dp, Material mat, real hs,
 
 __kernel void debris_stage(__constant const FlowParams* p, __constant const DebrisParams* dp,
                            __global const uchar* mask, __global const int* tile_list, __global const real* b,
-                           __global const real* gp, __global const real* gn, __global const real* manning,
+                           __global const real* gp, __global const real* gn, __global const real* curv, __global const real* manning,
                            __global const real* delta, __global const real* cohesion,
                            __global const real* pbed, __global real* impulse,
                            __global const real* S_base, __global const real* hf_base, __global const real* qfx_base,
@@ -225,6 +214,11 @@ __kernel void debris_stage(__constant const FlowParams* p, __constant const Debr
   real dS[NSOLID] = {0, 0, 0, 0, 0, 0};
   real dhf = 0, dqf[2] = {0, 0}, out_s = 0, out_f = 0;
   real mass_s[2], mass_f[2], norm_s[2], norm_f[2], tang_s[2], tang_f[2], sc_flux[3][2];
+  real beta_lo[2], beta_hi[2];  // blocked fractions of the column at the minus / plus face (solid_bed.cl)
+#if DEBRIS_OBSTACLE
+  real beta_lo_dem[2], beta_hi_dem[2];  // the same over the DEM alone (the particles' share of the walls)
+#endif
+  const real fk = cell_factor(p, dp, curv, S_st, n, k), geff = gnk * fk;
 #if DEBRIS_OBSTACLE
   // Force of the grid phases on the particles of this cell, per unit area and without dt/dx:
   // fluid part per unit fluid density, solid part in kg (times rho_s already).
@@ -263,7 +257,8 @@ __kernel void debris_stage(__constant const FlowParams* p, __constant const Debr
     const Face Fp = face_between(1, fpL, p_in, fpR, kind_p);
 
     // Solid faces: each side's lateral pressure with its cell's K (active where its solids extend
-    // along dir, passive where they contract), from its face thickness of the mixture.
+    // along dir, passive where they contract), from its face thickness of the mixture, and the
+    // terrain factor of its cell (curvature of the bed, solid_bed.cl).
     const Material mm = m_in ? material_of(p, dp, S_st, hf_st, delta, cohesion, km, n) : mc;
     const Material mp = p_in ? material_of(p, dp, S_st, hf_st, delta, cohesion, kp, n) : mc;
     real Km, Kc, Kp;
@@ -274,19 +269,21 @@ __kernel void debris_stage(__constant const FlowParams* p, __constant const Debr
       Kc = earth_pressure(mc.phi, mc.delta, passive_share(own.hi.us - own.lo.us, p->dx, gnk, c0.hs + c0.hf));
       Kp = earth_pressure(mp.phi, mp.delta, passive_share(fp_cell.hi.us - fp_cell.lo.us, p->dx, gn[kp], cp.hs + cp.hf));
     }
-    const SolidSide smL = {fm_cell.hi.hs, fm_cell.hi.es, fm_cell.hi.us, fm_cell.hi.vs,
-                           lateral_pressure(Km, mm, gm, fm_cell.hi.hs + fm_cell.hi.hf)};
-    const SolidSide smR = {own.lo.hs, own.lo.es, own.lo.us, own.lo.vs, lateral_pressure(Kc, mc, g, own.lo.hs + own.lo.hf)};
-    const SolidSide spL = {own.hi.hs, own.hi.es, own.hi.us, own.hi.vs, lateral_pressure(Kc, mc, g, own.hi.hs + own.hi.hf)};
-    const SolidSide spR = {fp_cell.lo.hs, fp_cell.lo.es, fp_cell.lo.us, fp_cell.lo.vs,
-                           lateral_pressure(Kp, mp, gpp, fp_cell.lo.hs + fp_cell.lo.hf)};
+    const real fm = m_in ? cell_factor(p, dp, curv, S_st, n, km) : fk, fp = p_in ? cell_factor(p, dp, curv, S_st, n, kp) : fk;
+    const SolidSide smL = solid_side(fm_cell.hi.hs, fm_cell.hi.zb, fm_cell.hi.us, fm_cell.hi.vs, fm_cell.hi.hf, Km, mm,
+                                     gm * fm, gn[km] * fm);
+    const SolidSide smR = solid_side(own.lo.hs, own.lo.zb, own.lo.us, own.lo.vs, own.lo.hf, Kc, mc, g * fk, geff);
+    const SolidSide spL = solid_side(own.hi.hs, own.hi.zb, own.hi.us, own.hi.vs, own.hi.hf, Kc, mc, g * fk, geff);
+    const SolidSide spR = solid_side(fp_cell.lo.hs, fp_cell.lo.zb, fp_cell.lo.us, fp_cell.lo.vs, fp_cell.lo.hf, Kp, mp,
+                                     gpp * fp, gn[kp] * fp);
     const int lk = lock_st[k];
     const int lock_m = lk && (!m_in || lock_st[km]), lock_p = lk && (!p_in || lock_st[kp]);
-    const Face Sm = solid_face(m_in, smL, 1, smR, kind_m, lock_m);
-    const Face Sp = solid_face(1, spL, p_in, spR, kind_p, lock_p);
+    const SolidFace Sm = solid_face(m_in, smL, 1, smR, kind_m, lock_m);
+    const SolidFace Sp = solid_face(1, spL, p_in, spR, kind_p, lock_p);
+    beta_lo[dir] = Sm.beta_p;
+    beta_hi[dir] = Sp.beta_m;
 
     mass_f[dir] = Fp.fh - Fm.fh;
-    mass_s[dir] = Sp.fh - Sm.fh;
     // Fluid normal momentum: as the single-phase stage, over the bed b + h_s.
     real sf = (Fp.fqn + g * (Fp.p + Fp.corr_m)) - (Fm.fqn + g * (Fm.p + Fm.corr_p));
 #if DEBRIS_OBSTACLE
@@ -306,60 +303,44 @@ __kernel void debris_stage(__constant const FlowParams* p, __constant const Debr
       const real dg = g - gnk;
       if (dg != (real)0 && m_in && p_in) sf -= dg * c0.hf * (real)0.5 * (b[kp] - b[km]);
     }
-    // Solid normal momentum: lateral pressure, bed slope with g_n, buoyancy from the mixture thickness.
-    // The bed and buoyancy forces use the cell-centre gradients of b and H (centred, one-sided next
-    // to the domain edge): independent of the reconstruction, so a cell at the edge of a solid mass
-    // (first order there) or at a bed kink feels the true slope; the face terms carry only the
-    // pressure, with the hydrostatic reconstruction keeping solids from climbing bed steps.
-    // A cell without solid mass (a film) takes no solid momentum through a locked face: no mass
-    // crosses it, so the neighbour's pressure would accelerate nothing but round-off (seen: films of
-    // 5 um at 10^4 m/s at the rim of a pile at rest).
-    const int empty = c0.hs <= fmax(p->h_dry, dp->film_h);
-    real ss = ((empty && lock_p) ? (real)0 : Sp.fqn + Sp.p + Sp.corr_m) -
-              ((empty && lock_m) ? (real)0 : Sm.fqn + Sm.p + Sm.corr_p);
+    mass_s[dir] = Sp.fh - Sm.fh;
+    // Solid normal momentum: lateral pressure and the bed jumps at the faces (solid_bed.cl), the
+    // bed slope within the cell with g_eff = g_n (g + u^T H u) / g over the reconstructed bed, and
+    // buoyancy from the centred gradient of the mixture thickness.
+    real ss = (Sp.fqn + Sp.p + Sp.corr_m) - (Sm.fqn + Sm.p + Sm.corr_p);
     if (c0.hs > (real)0) {
+      const real rise = own.hi.zb - own.lo.zb;
+      // (c0.hs is the mean of the two face thicknesses of the symmetric reconstruction)
+      const real hbar = c0.hs;
+      ss += geff * hbar * rise;
       const real span = (m_in && p_in) ? (real)0.5 : (real)1;
-      // Bed-slope force -g_n h_s db/dx of the solid momentum equation (spec §4, the bed terms
-      // -gamma g_n h_s db/dx - (1 - gamma) g_n h_s db/dx together), with the centred difference of b
-      // limited by what the drop to the downhill neighbour can pay for. The solids this force drives
-      // leave the cell through its downhill face and release g (b_k - b_down) per unit mass there,
-      // so a force steeper than that drop does work the potential energy never pays: at the foot of
-      // a cliff the centred difference is half the cliff's height per cell while the solids only
-      // move along the floor (found: a 0.08 m mixture at the foot of a 64 m cliff whose downhill
-      // neighbour lay 2.7 cm higher, pushed at 0.15 g by the cliff: 12 times the released energy
-      // after one step). Hence the slope used is sign(s) min(|s|, max(0, b_k - b_down)) with s the
-      // centred difference: unchanged on planes and convex bends, reduced on concave ones, zero
-      // where the downhill neighbour is higher than our bed (we sit in a pit or trough along dir,
-      // which also covers a neighbour rising above our solid surface).
-      // The force is also dropped where the solids cannot go down at all: a wall, or static solids
-      // in the neighbour reaching our surface (a filled pit, a deposit banked against an obstacle:
-      // our solids could only move level or up, over material that acts as ground). The face
-      // pressures (hydrostatic reconstruction) see no step there, so the bed force would be
-      // unbalanced: the solids would gain momentum for ever without releasing potential energy
-      // (seen: 0.5 m of solids at 158 m/s in a 3 m deep DEM pit; solids on the rim of a filled 18 m
-      // pit accelerating at 12 g). Moving neighbours never block (the rear of a sliding mass is
-      // pulled down with it), nor do lower surfaces (fronts, dry slopes).
-      const real slope = span * (BED(kp) - BED(km));
-      const int down_in = slope > (real)0 ? m_in : p_in;
-      const int down_k = slope > (real)0 ? km : kp;
-      const int down_kind = slope > (real)0 ? kind_m : kind_p;
-      const real top = BED(k) + c0.hs;
-      const int blocked = down_in ? (lock_st[down_k] && BED(down_k) + fmax(S_st[down_k], (real)0) >= top)
-                                  : down_kind == BOUNDARY_WALL;
-      real share = (real)1;  // limited slope / centred slope, in [0, 1]
-      if (down_in) {
-        const real drop = fmax(BED(k) - BED(down_k), (real)0), steep = fabs(slope);
-        if (drop < steep) share = drop / steep;
-      }
-      if (!blocked) ss += gnk * c0.hs * (share * slope);
-#if DEBRIS_OBSTACLE
-      // (also next to the particles, where the centred gradient reaches: particle_bed.cl passes
-      // that impulse on to the neighbouring cells with particles; the particles' part of a limited
-      // force is limited in the same proportion)
-      if (!blocked) react_s[dir] += mc.rho_s * gnk * c0.hs * span * (pbed[kp] - pbed[km]) * share;
-#endif
       ss += mc.gamma * g * c0.hs * span * ((cp.hs + cp.hf) - (cm.hs + cm.hf));
+#if DEBRIS_OBSTACLE
+      // The particles' part of the bed force within the cell: all but what the DEM alone exerts.
+      react_s[dir] += mc.rho_s * geff * hbar * (rise - bed_rise(b[km], m_in, b[k], b[kp], p_in));
+#endif
     }
+#if DEBRIS_OBSTACLE
+    {
+      // The particles' part of the bed-jump forces and of the wall reactions: the faces again over
+      // the DEM alone (face beds of the DEM's own reconstruction); the difference is the particles'.
+      const real zb_m = b[km] + (real)0.5 * bed_rise(m_in && cell_inside(p, mask, i - 2 * di, j - 2 * dj) ? b[cell_index(p, i - 2 * di, j - 2 * dj)] : b[km],
+                                                     m_in && cell_inside(p, mask, i - 2 * di, j - 2 * dj), b[km], b[k], 1);
+      const real zb_p = b[kp] - (real)0.5 * bed_rise(b[k], 1, b[kp], p_in && cell_inside(p, mask, i + 2 * di, j + 2 * dj) ? b[cell_index(p, i + 2 * di, j + 2 * dj)] : b[kp],
+                                                     p_in && cell_inside(p, mask, i + 2 * di, j + 2 * dj));
+      const real rise_b = bed_rise(b[km], m_in, b[k], b[kp], p_in);
+      SolidSide dL = smL, dR = smR, eL = spL, eR = spR;
+      dL.z = zb_m;
+      dR.z = b[k] - (real)0.5 * rise_b;
+      eL.z = b[k] + (real)0.5 * rise_b;
+      eR.z = zb_p;
+      const SolidFace SmB = solid_face(m_in, dL, 1, dR, kind_m, lock_m);
+      const SolidFace SpB = solid_face(1, eL, p_in, eR, kind_p, lock_p);
+      react_s[dir] += mc.rho_s * ((Sp.corr_m - SpB.corr_m) - (Sm.corr_p - SmB.corr_p));
+      beta_lo_dem[dir] = SmB.beta_p;
+      beta_hi_dem[dir] = SpB.beta_m;
+    }
+#endif
     norm_f[dir] = sf;
     norm_s[dir] = ss;
     tang_f[dir] = Fp.fqt - Fm.fqt;
@@ -409,6 +390,14 @@ __kernel void debris_stage(__constant const FlowParams* p, __constant const Debr
   real qs[2] = {hsn * solid_velocity(hsn, Sn[1], p->h_dry, dp->film_h),
                 hsn * solid_velocity(hsn, Sn[2], p->h_dry, dp->film_h)};
   if (hfn <= p->h_dry) qf[0] = qf[1] = 0;
+  // Walls take the normal momentum of the columns they block (solid_bed.cl, point 4).
+#if DEBRIS_OBSTACLE
+  // The wall reaction the particles give: what it takes beyond the DEM's walls alone.
+  const real wall_px = wall_reaction(qs[0], beta_lo_dem[0], beta_hi_dem[0]) - wall_reaction(qs[0], beta_lo[0], beta_hi[0]);
+  const real wall_py = wall_reaction(qs[1], beta_lo_dem[1], beta_hi_dem[1]) - wall_reaction(qs[1], beta_lo[1], beta_hi[1]);
+#endif
+  qs[0] = wall_reaction(qs[0], beta_lo[0], beta_hi[0]);
+  qs[1] = wall_reaction(qs[1], beta_lo[1], beta_hi[1]);
 
   // Stiff sources over ds: drag (with virtual mass), then basal friction of each phase.
   Material mn = mc;
@@ -431,7 +420,7 @@ __kernel void debris_stage(__constant const FlowParams* p, __constant const Debr
   if (hsn > p->h_dry) {
     const real rx = qs[0] - hsn * ucx, ry = qs[1] - hsn * ucy;
     const real qn = sqrt(rx * rx + ry * ry);
-    const real fric = ds * tan(mn.delta) * ((real)1 - dp->pore_b * mn.gamma) * gnk * hsn;
+    const real fric = ds * tan(mn.delta) * ((real)1 - dp->pore_b * mn.gamma) * geff * hsn;
     const real f = qn <= fric ? (real)0 : (real)1 - fric / qn;
     qs[0] = hsn * ucx + f * rx;
     qs[1] = hsn * ucy + f * ry;
@@ -467,8 +456,9 @@ __kernel void debris_stage(__constant const FlowParams* p, __constant const Debr
     // on them (whether they move or not); elsewhere it acts on the DEM.
     const real wr = w_out / p->dx, wfric = Hc_k > (real)0 ? (first_stage ? (real)0.5 : (real)1) : (real)0;
     const real rho = mn.rho_s;
-    impulse[k] += wr * (dp->rho_f * react_f[0] + react_s[0]) - wfric * rho * (qs[0] - qs_before[0]);
-    impulse[n + k] += wr * (dp->rho_f * react_f[1] + react_s[1]) - wfric * rho * (qs[1] - qs_before[1]);
+    const real wwall = first_stage ? (real)0.5 : (real)1;  // the wall reaction reaches the end state as friction does
+    impulse[k] += wr * (dp->rho_f * react_f[0] + react_s[0]) - wfric * rho * (qs[0] - qs_before[0]) + wwall * rho * wall_px;
+    impulse[n + k] += wr * (dp->rho_f * react_f[1] + react_s[1]) - wfric * rho * (qs[1] - qs_before[1]) + wwall * rho * wall_py;
   }
 #endif
   const real wf = w_out * p->dx;

@@ -108,6 +108,7 @@ void FlowSolver::setInput(const FlowInput& in, double startTime) {
   gp_.upload(sg.gp);
   gn_.upload(sg.gn);
   slopeSpeed_.upload(sg.slopeSpeed);
+  if (settings_.twoPhase) curvature_.upload(sg.curvature);
   h_.upload(h);
   // Momentum of dry and outside cells is discarded, as the update does after every stage.
   auto momentum = [&](const std::vector<double>& q, const char* what) {

@@ -155,6 +155,7 @@ class FlowSolver {
   // the step and after stage 1, static-solid flags, static maps, maxima.
   compute::RawBuffer debrisParams_;
   compute::RealBuffer solid0_, solid1_, delta_, cohesion_, maxima_;
+  compute::RealBuffer curvature_;  ///< bed curvature b_xx, b_xy, b_yy (flow/SlopeGravity.hpp)
   compute::RealBuffer particleBed_, bedImpulse_;
   compute::Buffer<uint8_t> lock0_, lock1_;
   compute::Kernel debrisStage_, debrisTrack_, debrisDiagnostics_;

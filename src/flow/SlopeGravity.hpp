@@ -1,7 +1,12 @@
-// Slope-corrected gravity per cell (spec §1): g_n = g cos^2(theta) for bed-slope gravity and basal
-// normal stress, g_p for the depth-pressure terms (g cos^2 by default, g cos^4 as an option), with
-// cos^2(theta) = 1 / (1 + |grad b|^2) and grad b from centred differences of the DEM (one-sided
-// next to nodata cells and the raster edge).
+// Slope-corrected gravity per cell (spec §1) and the bed curvature the solids' gravity needs:
+//  - g_n = g cos^2(theta) for bed-slope gravity and basal normal stress, g_p for the depth-pressure
+//    terms (g cos^2 by default, g cos^4 as an option), cos^2(theta) = 1 / (1 + |grad b|^2);
+//  - the bed's curvature tensor (Hessian of b), with which the solid stage adds the vertical
+//    acceleration of material that follows curved terrain (kernels/flow/debris_gravity.cl).
+// grad b is the bed slope the solids' reconstruction uses: per axis the minmod of the two one-sided
+// differences (the one-sided difference next to nodata cells and the raster edge), so a plane has its
+// exact slope, and a cell beside a DEM step is flat (the step itself is a face of the reconstructed
+// bed, a wall to the material below it). The Hessian is the centred difference of that slope.
 #pragma once
 #include <cstdint>
 #include <vector>
@@ -17,9 +22,20 @@ struct SlopeGravity {
   /// sqrt(g |grad b| dx) [m/s]: the speed water at rest gains from the bed slope over one cell,
   /// added to the CFL speed of wet cells so thin films on slopes cannot outrun the time step.
   std::vector<double> slopeSpeed;
+  /// Bed slope b_x, b_y per cell (limited, see above) [-].
+  std::vector<double> slopeX, slopeY;
+  /// Bed curvature per cell, 3 n values: b_xx (cells 0..n-1), b_xy (n..2n-1), b_yy (2n..3n-1) [1/m];
+  /// all zero when the slope correction is off (plain g, no terrain-following gravity).
+  std::vector<double> curvature;
 };
 
 SlopeGravity computeSlopeGravity(const Grid& grid, const std::vector<double>& bed, const std::vector<uint8_t>& mask,
                                  const FlowSettings& settings);
+
+/// The limited bed slope along one axis at cell (i, j): minmod of the one-sided differences of
+/// `field` where both neighbours are inside, the one-sided difference next to an outside cell, 0
+/// without inside neighbours along the axis (per unit length: divided by dx).
+double limitedBedSlope(const Grid& grid, const std::vector<double>& field, const std::vector<uint8_t>& mask, int i,
+                       int j, int di, int dj);
 
 }  // namespace talus::flow
