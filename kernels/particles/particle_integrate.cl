@@ -1,5 +1,5 @@
 // Terrain forces and the symplectic update of the particles (spec §5): bed-slope gravity -g_n grad b
-// (horizontal projection, as the grid model), basal Coulomb friction tan(delta) (1 - B gamma) g_n
+// (horizontal projection, as the grid model, with the bed's curvature in g_n as there), basal Coulomb friction tan(delta) (1 - B gamma) g_n
 // applied implicitly (it stops a particle but never reverses it; gamma = rho_f / rho_c where the
 // grid's free fluid stands at the particle (`fluid_depth`, from G2P), 0 for dry particles: buoyancy
 // and pore pressure reduce the effective normal stress, P.39), then
@@ -31,7 +31,7 @@ inline int is_wall(__constant const ParticleParams* p, __global const uchar* mas
 
 __kernel void particle_integrate(__constant const ParticleParams* p, __global const uchar* mask,
                                  __global const real* bed, __global const real* grad_x, __global const real* grad_y,
-                                 __global const real* gn,
+                                 __global const real* gn, __global const real* curv,
                                  __global real* x, __global real* y, __global real* vx, __global real* vy,
                                  __global real* m, __global const real* delta, __global const real* ax,
                                  __global const real* ay, __global real* A, __global const real* divergence,
@@ -54,7 +54,14 @@ __kernel void particle_integrate(__constant const ParticleParams* p, __global co
     }
   }
   const real xi = x[i], yi = y[i];
-  const real g = terrain_sample(p, gn, xi, yi);
+  // Terrain-following gravity (kernels/flow/solid_bed.cl, point 1; Denlinger & Iverson 2004): the
+  // bed's normal reaction per unit mass is g_n (g + v^T H v) / g, H the bed's curvature, in the
+  // bed-slope force and in the basal friction alike.
+  const int ncell = p->nx * p->ny;
+  const real u0 = vx[i], v0 = vy[i];
+  const real cv = (terrain_sample(p, curv, xi, yi) * u0 * u0 + terrain_sample(p, curv + 2 * ncell, xi, yi) * v0 * v0) +
+                  (real)2 * terrain_sample(p, curv + ncell, xi, yi) * (u0 * v0);
+  const real g = terrain_sample(p, gn, xi, yi) * fmax((real)0, (real)1 + cv / (real)GRAVITY);
   const real bx = terrain_sample(p, grad_x, xi, yi), by = terrain_sample(p, grad_y, xi, yi);
   real ux = vx[i] + dt * (ax[i] - g * bx), uy = vy[i] + dt * (ay[i] - g * by);
   const real speed = sqrt(ux * ux + uy * uy);

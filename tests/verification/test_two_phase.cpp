@@ -376,9 +376,17 @@ TEST(TwoPhase, VolumeConservedWithWalls) {
 //  - Mirror scene: symmetric under x -> L - x (bowl and release centred on x = L/2, noise
 //    r(min(i, n-1-i), j)). Mirroring swaps the arguments of every limiter and flux evaluation, so
 //    this holds to round-off only, amplified by the limiter and friction switches over 150 steps:
-//    asserted 2e-12 of the field maxima (measured 3e-15 now, 3e-13 with an earlier version of the
-//    kernels).
+//    asserted 2e-12 of the field maxima (measured 3e-15 at 150 steps with the kernels before the
+//    solids' faces between different beds, 3e-13 with an earlier version). Since those faces (issue
+//    13) the mass reaches cells whose solid momentum passes through zero after about 18 steps, where
+//    the friction stop (or the wall reaction's choice of face by the sign of q) decides on a
+//    round-off difference in one frame and not in the other; from then on the frames differ by
+//    O(1e-5) locally (measured 2.4e-16 at step 17, 8e-5 at step 20; the step of the first flip
+//    moves with any change of the dynamics). So the mirror is checked over the first 15 steps
+//    (0.45 s, max speed 2.9 m/s), where every such switch still agrees.
 namespace {
+
+constexpr int kMirrorSteps = 15;
 
 fl::FlowInput symmetricScene(const Grid& g, bool transposition) {
   const int n = g.nx;
@@ -412,15 +420,14 @@ struct SymmetryResult {
   double maxSpeed = 0, time = 0;
 };
 
-SymmetryResult runSymmetry(bool transposition, bool slopeCorrection) {
+SymmetryResult runSymmetry(bool transposition, bool slopeCorrection, int steps = 150) {
   const int n = 48;
   const Grid g = Grid::make(n, n, 1.0);
   fl::FlowSettings s = twoPhaseSettings(fl::Boundary::Wall);
   s.slopeCorrection = slopeCorrection;
   fl::FlowSolver solver(talus::test::testContext(Precision::Double), g, s);
   solver.setInput(symmetricScene(g, transposition));
-  const int steps = talus::test::advance(solver, talus::test::RunLimits::steps(150));
-  EXPECT_EQ(steps, 150);
+  EXPECT_EQ(talus::test::advance(solver, talus::test::RunLimits::steps(steps)), steps);
   const auto st = talus::test::readState(solver);
   SymmetryResult r;
   r.time = solver.time();
@@ -450,7 +457,7 @@ SymmetryResult runSymmetry(bool transposition, bool slopeCorrection) {
 
 TEST(TwoPhase, SymmetricReleaseStaysSymmetric) {
   const SymmetryResult t = runSymmetry(true, true), tPlain = runSymmetry(true, false);
-  const SymmetryResult m = runSymmetry(false, true);
+  const SymmetryResult m = runSymmetry(false, true, kMirrorSteps);
   std::printf("[ symmetry x <-> y ] t %.2f s, max speed %.2f m/s: h %.2e, q %.2e relative, %ld of %d values not "
               "bitwise equal; without slope correction: h %.2e, q %.2e, %ld not bitwise equal\n",
               t.time, t.maxSpeed, t.errH, t.errQ, t.bitsDiffer, 6 * 48 * 48, tPlain.errH, tPlain.errQ,

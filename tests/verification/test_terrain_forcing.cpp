@@ -1,0 +1,261 @@
+// Solids on curved terrain (kernels/flow/solid_bed.cl, point 1: gravity with the bed's curvature).
+//
+// Valley. A slope of alpha_1 turns smoothly into a counter-slope of alpha_2: b'(x) runs linearly
+// from -tan(alpha_1) to +tan(alpha_2) over a transition of W = 60 m (constant curvature there), with
+// cells of 1 m, in a 1-cell-wide channel with walls. A block of solids 5 m long and 1 m thick is
+// released at rest with its centroid Z0 = 50 m above the valley floor; no lateral pressure (K = 0)
+// and no cohesion: every material point moves as a bead on the bed.
+//
+// Reference: a bead on z = b(x) in horizontal coordinates obeys x'' = -lambda (b' + mu sign(x')),
+// lambda = (g + b'' x'^2) / (1 + b'^2) (the normal reaction; the friction's vertical part cancels
+// from lambda, see solid_bed.cl), integrated here by RK4 with a step of 1e-4 s from the block's
+// release centroid and the analytic b', b''. Without friction it conserves
+// (x'^2 (1 + b'^2)) / 2 + g b, so it climbs back to its release height exactly.
+//
+// Measured: the highest elevation of the block's centroid on the counter-slope, above the floor,
+// against the bead's. The block is not a point (5 m long, so its points start up to 1.6 m
+// (40 deg) apart in elevation) and the finite-volume scheme mixes their momenta where the block
+// compresses in the valley, an inelastic loss; both are first order in the block length and the
+// cell size. Before the curvature term the mass climbed to 0.65 of its release height (40 -> 20
+// deg, issue 13), the error growing with the difference of the slopes.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include "core/Constants.hpp"
+#include "flow/FlowSolver.hpp"
+#include "particles/ParticleSeeding.hpp"
+#include "particles/ParticleSolver.hpp"
+#include "support/DebrisScene.hpp"
+#include "support/TestDevice.hpp"
+
+using namespace talus;
+namespace fl = talus::flow;
+
+namespace {
+
+constexpr double kDeg = 3.14159265358979323846 / 180.0;
+constexpr double kW = 60.0, kZ0 = 50.0, kBlockL = 5.0, kBlockH = 1.0;
+
+/// The valley profile: slope s1 = tan(alpha_1) down to x_a, the transition to s2 = tan(alpha_2) over
+/// [x_a, x_a + W], the counter-slope beyond; b = 0 at the floor (where b' = 0).
+struct Valley {
+  double s1, s2, xa, xf, length;
+  Valley(double a1, double a2) : s1(std::tan(a1 * kDeg)), s2(std::tan(a2 * kDeg)) {
+    xa = kZ0 / s1 + 10.0;                       // release on the straight slope, 10 m of margin
+    xf = xa + kW * s1 / (s1 + s2);              // floor: b' = 0
+    length = xa + kW + 1.3 * kZ0 / s2 + 10.0;   // room for the climb
+  }
+  double slope(double x) const {
+    if (x < xa) return -s1;
+    if (x > xa + kW) return s2;
+    return -s1 + (s1 + s2) * (x - xa) / kW;
+  }
+  double curvature(double x) const { return x > xa && x < xa + kW ? (s1 + s2) / kW : 0.0; }
+  double bed(double x) const {
+    // b(x) = integral of the slope from the floor.
+    auto prim = [&](double u) {  // antiderivative of slope, continuous
+      if (u <= xa) return -s1 * (u - xa);
+      if (u <= xa + kW) return -s1 * (u - xa) + 0.5 * (s1 + s2) * (u - xa) * (u - xa) / kW;
+      return -s1 * kW + 0.5 * (s1 + s2) * kW + s2 * (u - xa - kW);
+    };
+    return prim(x) - prim(xf);
+  }
+};
+
+/// Highest elevation above the floor that a bead released at rest at x0 reaches on the
+/// counter-slope (first turning point), with friction coefficient mu (RK4, dt 1e-4 s).
+double beadRunUp(const Valley& v, double x0, double mu) {
+  double x = x0, u = 0;
+  auto acc = [&](double xx, double uu) {
+    const double bp = v.slope(xx), lambda = std::max(0.0, (kGravity + v.curvature(xx) * uu * uu) / (1 + bp * bp));
+    return -lambda * (bp + mu * (uu > 0 ? 1.0 : uu < 0 ? -1.0 : 0.0));
+  };
+  const double dt = 1e-4;
+  for (int n = 0; n < 10000000; ++n) {
+    const double k1x = u, k1u = acc(x, u);
+    const double k2x = u + 0.5 * dt * k1u, k2u = acc(x + 0.5 * dt * k1x, u + 0.5 * dt * k1u);
+    const double k3x = u + 0.5 * dt * k2u, k3u = acc(x + 0.5 * dt * k2x, u + 0.5 * dt * k2u);
+    const double k4x = u + dt * k3u, k4u = acc(x + dt * k3x, u + dt * k3u);
+    const double xn = x + dt / 6 * (k1x + 2 * k2x + 2 * k3x + k4x), un = u + dt / 6 * (k1u + 2 * k2u + 2 * k3u + k4u);
+    if (n > 10 && un <= 0) return v.bed(xn);
+    x = xn;
+    u = un;
+  }
+  return v.bed(x);
+}
+
+struct RunUp {
+  double release = 0;  ///< centroid elevation of the release above the floor [m]
+  double highest = 0;  ///< highest centroid elevation on the counter-slope [m]
+  double bead = 0;     ///< the bead's run-up from the release centroid [m]
+};
+
+RunUp runValley(double a1, double a2, double mu, double kDx) {
+  const Valley v(a1, a2);
+  const int nx = static_cast<int>(std::ceil(v.length / kDx));
+  const Grid grid = Grid::make(nx, 1, kDx);
+  test::SolidMaterial mat;
+  mat.phi = mat.delta = std::atan(mu);
+  fl::FlowInput in = test::debrisInput(grid, mat);
+  // Find the cell centre whose bed is kZ0 and put the block around it.
+  int ic = 0;
+  for (int i = 0; i < nx; ++i)
+    if (v.bed(test::cellX(grid, i)) >= kZ0 && test::cellX(grid, i) < v.xf) ic = i;
+  const int half = static_cast<int>(kBlockL / kDx) / 2;
+  for (int i = 0; i < nx; ++i) {
+    in.bed[i] = v.bed(test::cellX(grid, i));
+    if (i >= ic - half && i <= ic + half) in.hs[i] = kBlockH;
+  }
+  fl::FlowSettings s;
+  s.twoPhase = true;
+  s.edge = fl::Boundary::Wall;
+  s.debris.earthPressure = fl::EarthPressure::Constant;
+  s.debris.kConst = 0.0;
+  s.debris.deltaFromPhi = false;
+  s.debris.filmThickness = 0.0;
+  fl::FlowSolver solver(test::testContext(compute::Precision::Double), grid, s);
+  solver.setInput(in);
+  auto centroid = [&](const std::vector<double>& hs) {
+    double m0 = 0, m1 = 0, mx = 0;
+    for (int i = 0; i < nx; ++i) {
+      m0 += hs[i];
+      m1 += hs[i] * in.bed[i];
+      mx += hs[i] * test::cellX(grid, i);
+    }
+    return std::pair<double, double>{m1 / m0, mx / m0};
+  };
+  RunUp r;
+  const auto [z0, x0] = centroid(in.hs);
+  r.release = z0;
+  r.bead = beadRunUp(v, x0, mu);
+  double best = -1e9;
+  bool climbing = false;
+  test::advance(solver, test::RunLimits::until(60.0), [&](const fl::FlowSolver& sv) {
+    const auto [z, x] = centroid(sv.hs());
+    if (x > v.xf) climbing = true;
+    if (!climbing) return true;
+    if (z > best) {
+      best = z;
+      return true;
+    }
+    return z > best - 0.5;  // stop once the centroid is well on its way back down
+  });
+  r.highest = best;
+  return r;
+}
+
+}  // namespace
+
+// Frictionless: the block climbs back to its release height. The loss is first order in the cell
+// size (numerical mixing of the block's momenta; measured deficits 6 %, 2 %, 0.9 % at 1, 0.5, 0.25
+// m for 40 -> 20 deg): asserted within 2 % (issue 13) at 0.25 m cells (20 cells per block), a
+// deficit that at least halves from 1 m to 0.5 m cells (first-order convergence to the bead), and
+// no gain at any resolution (the scheme cannot create energy; 1e-3 for round-off and the mass's
+// finite extent).
+TEST(TerrainForcing, FrictionlessMassClimbsBackToItsReleaseHeight) {
+  const double pairs[][2] = {{40.0, 20.0}, {20.0, 40.0}, {30.0, 30.0}, {35.0, 10.0}};
+  for (const auto& p : pairs) {
+    double deficit[3] = {0, 0, 0};
+    const double cells[3] = {1.0, 0.5, 0.25};
+    for (int c = 0; c < 3; ++c) {
+      const RunUp r = runValley(p[0], p[1], 0.0, cells[c]);
+      const double ratio = r.highest / r.release;
+      deficit[c] = 1.0 - ratio;
+      std::printf("[ valley %2.0f -> %2.0f deg, frictionless, dx %.2f m ] release %.2f m above the floor, run-up %.2f m: "
+                  "ratio %.4f (bead %.6f)\n",
+                  p[0], p[1], cells[c], r.release, r.highest, ratio, r.bead / r.release);
+      EXPECT_NEAR(r.bead / r.release, 1.0, 1e-4) << "the reference bead conserves energy";
+      EXPECT_LE(ratio, 1.0 + 1e-3) << "no energy may be created";
+    }
+    EXPECT_LE(deficit[2], 0.02) << p[0] << " -> " << p[1] << " deg";
+    EXPECT_LE(deficit[1], 0.5 * deficit[0]) << "first-order convergence";
+  }
+}
+
+// Coulomb friction mu = tan(10 deg): the block turns where the bead does (the bead's friction
+// includes the centripetal normal stress in the bend). Measured at 1 m cells -2.5 % / -3.1 % of the
+// release height (the same first-order loss as above); asserted within 1.5 % at 0.25 m.
+TEST(TerrainForcing, CoulombMassTurnsWhereTheBeadDoes) {
+  const double mu = std::tan(10.0 * kDeg);
+  const double pairs[][2] = {{40.0, 20.0}, {25.0, 35.0}};
+  for (const auto& p : pairs) {
+    const RunUp r = runValley(p[0], p[1], mu, 0.25);
+    std::printf("[ valley %2.0f -> %2.0f deg, mu tan 10, dx 0.25 m ] release %.2f m, run-up %.2f m, bead %.2f m "
+                "(%+.4f of release)\n",
+                p[0], p[1], r.release, r.highest, r.bead, (r.highest - r.bead) / r.release);
+    EXPECT_LT(r.bead, 0.9 * r.release) << "friction must take a visible share";
+    EXPECT_NEAR(r.highest, r.bead, 0.015 * r.release) << p[0] << " -> " << p[1] << " deg";
+  }
+}
+
+// Particle mode: a small strong block (3 m x 3 m, 1 m thick, cohesion 10 MPa: elastic, far from
+// yield; 4 particles per cell) over the same valleys, cells of 1 m, 5 cells wide, bed friction 0.
+// Its particles follow the bilinear bed of the sampled gradient and curvature fields
+// (particle_integrate.cl); the block's centroid elevation climbs back to the release height.
+// The block is stiff, so it neither spreads nor mixes: the loss is the bend's bending work on the
+// block and the O(dx^2) error of the sampled fields. Before the curvature term the particles
+// climbed to 0.68 (40 -> 20 deg, issue 13). Asserted within 2 % (issue 13), no gain beyond 1e-3.
+TEST(TerrainForcing, ParticleBlockClimbsBackToItsReleaseHeight) {
+  const double pairs[][2] = {{40.0, 20.0}, {20.0, 40.0}};
+  for (const auto& pr : pairs) {
+    const Valley v(pr[0], pr[1]);
+    const double dx = 1.0;
+    const int nx = static_cast<int>(std::ceil(v.length / dx)), ny = 5;
+    const Grid grid = Grid::make(nx, ny, dx);
+    particles::ParticleTerrain terrain;
+    terrain.mask.assign(grid.cells(), 1);
+    terrain.bed.assign(grid.cells(), 0.0);
+    particles::SeedInput in;
+    in.mask = terrain.mask;
+    in.thickness.assign(grid.cells(), 0.0);
+    in.density.assign(grid.cells(), 2400.0);
+    int ic = 0;
+    for (int i = 0; i < nx; ++i)
+      if (v.bed((i + 0.5) * dx) >= kZ0 && (i + 0.5) * dx < v.xf) ic = i;
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i) {
+        terrain.bed[grid.index(i, j)] = v.bed((i + 0.5) * dx);
+        if (i >= ic - 1 && i <= ic + 1 && j >= 1 && j <= 3) in.thickness[grid.index(i, j)] = 1.0;
+      }
+    in.bed = terrain.bed;
+    const particles::SeededParticles seeded = particles::seedParticles(grid, in, particles::SeedSpacing{0, 4});
+    particles::ParticleMaterial mat;
+    mat.density = {2400.0};
+    mat.phi = {30 * kDeg};
+    mat.delta = {0.0};
+    mat.cohesion = {1e7};
+    particles::ParticleSettings ps;
+    particles::ParticleSolver solver(test::testContext(compute::Precision::Double), grid, terrain, ps);
+    solver.setParticles(seeded, mat);
+    // Centroid elevation of the particles on the sampled bed (bilinear, as the kernels see it).
+    auto centroid = [&](const particles::ParticleState& st) {
+      double m = 0, z = 0, x = 0;
+      for (std::size_t q = 0; q < st.size(); ++q) {
+        m += st.mass[q];
+        z += st.mass[q] * v.bed(st.x[q]);
+        x += st.mass[q] * st.x[q];
+      }
+      return std::pair<double, double>{z / m, x / m};
+    };
+    const double z0 = centroid(solver.state()).first;
+    double best = -1e9;
+    bool climbing = false;
+    for (int k = 0; k < 800; ++k) {
+      solver.step(0.05);
+      const auto [z, x] = centroid(solver.state());
+      if (x > v.xf) climbing = true;
+      if (!climbing) continue;
+      if (z > best) best = z;
+      else if (z < best - 0.5) break;
+    }
+    const double ratio = best / z0;
+    std::printf("[ particle block, valley %2.0f -> %2.0f deg, frictionless ] release %.2f m, run-up %.2f m: ratio %.4f\n",
+                pr[0], pr[1], z0, best, ratio);
+    EXPECT_NEAR(ratio, 1.0, 0.02);
+    EXPECT_LE(ratio, 1.0 + 1e-3);
+  }
+}
