@@ -33,23 +33,39 @@ HealthCheck::HealthCheck(const Raster& dem, const flow::FlowInput& in, double cf
 }
 
 std::string HealthCheck::locate(const flow::FlowSolver& solver, const char* what) const {
-  // Full read-back only on failure, to name the cell.
+  // Full read-back only on failure, to name the cell: the fluid, and the solids in a two-phase run
+  // (a dry granular run has no fluid at all, so its fields alone would name an empty cell).
   const std::vector<double> h = solver.h(), qx = solver.qx(), qy = solver.qy();
+  const bool solids = solver.twoPhase();
+  const std::vector<double> hs = solids ? solver.hs() : std::vector<double>(), qsx = solids ? solver.qsx() : hs,
+                            qsy = solids ? solver.qsy() : hs;
+  const bool negative = std::string(what) == "negative thickness";
   std::ostringstream o;
   std::size_t worst = 0;
+  bool worstSolid = false;
   double worstValue = -HUGE_VAL;
+  auto consider = [&](const std::vector<double>& hh, const std::vector<double>& ax, const std::vector<double>& ay,
+                      bool solid, std::size_t k) {
+    const double score = negative ? -hh[k] : hh[k] > 0 ? std::hypot(ax[k], ay[k]) / hh[k] : 0.0;
+    if (score > worstValue) worstValue = score, worst = k, worstSolid = solid;
+  };
   for (std::size_t k = 0; k < h.size(); ++k) {
-    if (!std::isfinite(h[k]) || !std::isfinite(qx[k]) || !std::isfinite(qy[k])) {
-      o << what << ": non-finite state h = " << h[k] << " m, qx = " << qx[k] << ", qy = " << qy[k] << " m^2/s in "
-        << where(grid_, k);
+    const bool bad = !std::isfinite(h[k]) || !std::isfinite(qx[k]) || !std::isfinite(qy[k]) ||
+                     (solids && (!std::isfinite(hs[k]) || !std::isfinite(qsx[k]) || !std::isfinite(qsy[k])));
+    if (bad) {
+      o << what << ": non-finite state h = " << h[k] << " m, qx = " << qx[k] << ", qy = " << qy[k] << " m^2/s";
+      if (solids) o << ", h_s = " << hs[k] << " m, q_sx = " << qsx[k] << ", q_sy = " << qsy[k] << " m^2/s";
+      o << " in " << where(grid_, k);
       return o.str();
     }
-    const double score = std::string(what) == "negative thickness" ? -h[k]
-                         : h[k] > 0 ? std::hypot(qx[k], qy[k]) / h[k] : 0.0;
-    if (score > worstValue) worstValue = score, worst = k;
+    consider(h, qx, qy, false, k);
+    if (solids) consider(hs, qsx, qsy, true, k);
   }
-  o << what << " in " << where(grid_, worst) << " (h = " << h[worst] << " m, speed = "
-    << (h[worst] > 0 ? std::hypot(qx[worst], qy[worst]) / h[worst] : 0.0) << " m/s)";
+  const std::vector<double>& hh = worstSolid ? hs : h;
+  const std::vector<double>& ax = worstSolid ? qsx : qx;
+  const std::vector<double>& ay = worstSolid ? qsy : qy;
+  o << what << " in " << where(grid_, worst) << " (" << (worstSolid ? "solids: h_s = " : "h = ") << hh[worst]
+    << " m, speed = " << (hh[worst] > 0 ? std::hypot(ax[worst], ay[worst]) / hh[worst] : 0.0) << " m/s)";
   return o.str();
 }
 

@@ -187,6 +187,32 @@ TEST(HealthCheck, NamesTheFailingQuantityAndCell) {
   EXPECT_NE(why.find("CFL violation"), std::string::npos) << why;
 }
 
+// A dry granular run (two-phase model, no fluid at all): the diagnosis must name the cell of the
+// fast solids, not a cell of the empty fluid fields (before: "cell (0, 0) with h = 0", issue 13).
+TEST(HealthCheck, NamesTheSolidCellInADryRun) {
+  const Grid g = Grid::make(20, 10, 1.0);
+  Raster dem(g, 0.0);
+  flow::FlowInput dry;
+  dry.mask.assign(g.cells(), 1);
+  dry.bed.assign(g.cells(), 0.0);
+  dry.manning.assign(g.cells(), 0.0);
+  dry.h.assign(g.cells(), 0.0);
+  dry.hs.assign(g.cells(), 0.5);
+  dry.qsx.assign(g.cells(), 0.0);
+  dry.qsy.assign(g.cells(), 0.0);
+  dry.qsx[g.index(13, 6)] = 30.0;  // 60 m/s in 0.5 m of solids on flat ground
+  const sim::HealthCheck health(dem, dry, 0.5);
+  compute::Context& ctx = test::testContext(compute::Precision::Double);
+  flow::FlowSettings settings;
+  settings.twoPhase = true;
+  flow::FlowSolver solver(ctx, g, settings);
+  solver.setInput(dry);
+  const std::string why = health.check(solver, 1e-4);
+  EXPECT_NE(why.find("runaway velocity"), std::string::npos) << why;
+  EXPECT_NE(why.find("column 13, row 6"), std::string::npos) << why;
+  EXPECT_NE(why.find("solids"), std::string::npos) << why;
+}
+
 TEST(Checkpoint, UnstableRunKeepsItsOutputs) {
   TempDir t;
   const fs::path runFile = writeScene(t.path, 0.2, 0.05);
