@@ -21,7 +21,8 @@ void debris_tile_diagnostics(__constant const FlowParams* p, __constant const De
                              __global const uchar* mask, __global const int* tile_list, __global const real* S,
                              __global const real* hf, __global const real* qfx, __global const real* qfy,
                              __global const real* slope_speed, __global const real* delta,
-                             __global const real* pbed, __global const real* out_step,
+                             __global const real* pbed, __global const real* bed, __global const real* slope,
+                             __global const real* out_step,
                              __global real* partial, __global int* tile_wet) {
   __local real s[DIAG_MAX_ROWS * TILE_CELLS];
   __local int s_wet[TILE_CELLS];
@@ -29,7 +30,7 @@ void debris_tile_diagnostics(__constant const FlowParams* p, __constant const De
   const int i = c.x, j = c.y;
   const int lid = get_local_id(1) * TILE + get_local_id(0);
   const int n = p->nx * p->ny;
-  real speed = 0, volf = 0, outf = 0, ke = 0, hmin = REAL_MAX, vols = 0, outs = 0;
+  real speed = 0, volf = 0, outf = 0, ke = 0, hmin = REAL_MAX, vols = 0, outs = 0, pe = 0, kev = 0;
   int wet = 0;
   if (i < p->nx && j < p->ny && cell_inside(p, mask, i, j)) {
     const int k = cell_index(p, i, j);
@@ -63,6 +64,14 @@ void debris_tile_diagnostics(__constant const FlowParams* p, __constant const De
     outf = out_step[k];
     outs = out_step[n + k];
     ke = (real)0.5 * (rho_s * hs * (us * us + vs * vs) + dp->rho_f * h * (uf * uf + vf * vf)) * area;
+    // Energy accounting: the centroid height of each phase's column (solids on the DEM, fluid on
+    // top of them) and the vertical velocity u.grad b of material that follows the bed (the slope of
+    // the reconstructed bed, flow/SlopeGravity.hpp); with the horizontal kinetic energy these make
+    // the mechanical energy that the terrain-following gravity conserves (solid_bed.cl).
+    const real hs0 = fmax(hs, (real)0), hf0 = fmax(h, (real)0);
+    pe = GRAVITY * (rho_s * hs0 * (bed[k] + (real)0.5 * hs0) + dp->rho_f * hf0 * (bed[k] + hs0 + (real)0.5 * hf0)) * area;
+    const real ws = us * slope[k] + vs * slope[n + k], wf = uf * slope[k] + vf * slope[n + k];
+    kev = (real)0.5 * (rho_s * hs * ws * ws + dp->rho_f * h * wf * wf) * area;
     hmin = fmin(hs, h);
     wet = H > (real)0 || isnan(H);
     if (isnan(H) || isnan(S[n + k]) || isnan(S[2 * n + k]) || isnan(qfx[k]) || isnan(qfy[k])) speed = NAN;
@@ -74,6 +83,8 @@ void debris_tile_diagnostics(__constant const FlowParams* p, __constant const De
   s[DIAG_MIN_H * TILE_CELLS + lid] = hmin;
   s[DIAG_VOLUME_S * TILE_CELLS + lid] = vols;
   s[DIAG_OUTFLOW_S * TILE_CELLS + lid] = outs;
+  s[DIAG_POTENTIAL * TILE_CELLS + lid] = pe;
+  s[DIAG_KINETIC_V * TILE_CELLS + lid] = kev;
   s_wet[lid] = wet;
   reduce_tile(s, s_wet, DIAG_MAX_ROWS, lid, get_group_id(0), p->tiles_x * p->tiles_y, partial, tile_wet,
               tile_list[get_group_id(0)]);

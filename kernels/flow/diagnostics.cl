@@ -20,7 +20,9 @@
 #define DIAG_MIN_H 4
 #define DIAG_VOLUME_S 5   // two-phase only: solid volume
 #define DIAG_OUTFLOW_S 6  // two-phase only: solid outflow
-#define DIAG_MAX_ROWS 7
+#define DIAG_POTENTIAL 7  // two-phase only: potential energy g sum m (centroid height) [J]
+#define DIAG_KINETIC_V 8  // two-phase only: kinetic energy of the vertical motion m (u.grad b)^2 / 2 [J]
+#define DIAG_MAX_ROWS 9
 #define TILE_CELLS (TILE * TILE)
 
 /// Reduces `rows` values per work-item (row r in s[r * TILE_CELLS + lid]; row DIAG_SPEED by max with

@@ -13,7 +13,7 @@
 namespace talus::flow {
 namespace {
 
-constexpr int kDiagnosticRows = 7;     // see kernels/flow/diagnostics.cl (5 single-phase, 7 two-phase)
+constexpr int kDiagnosticRows = 9;     // see kernels/flow/diagnostics.cl (5 single-phase, 9 two-phase)
 const compute::Range kLocal2D{kTile, kTile};
 
 std::string buildOptions(const FlowSettings& s) {
@@ -108,7 +108,12 @@ void FlowSolver::setInput(const FlowInput& in, double startTime) {
   gp_.upload(sg.gp);
   gn_.upload(sg.gn);
   slopeSpeed_.upload(sg.slopeSpeed);
-  if (settings_.twoPhase) curvature_.upload(sg.curvature);
+  if (settings_.twoPhase) {
+    curvature_.upload(sg.curvature);
+    std::vector<double> slope = sg.slopeX;
+    slope.insert(slope.end(), sg.slopeY.begin(), sg.slopeY.end());
+    bedSlope_.upload(slope);
+  }
   h_.upload(h);
   // Momentum of dry and outside cells is discarded, as the update does after every stage.
   auto momentum = [&](const std::vector<double>& q, const char* what) {
@@ -209,14 +214,14 @@ void FlowSolver::computeDiagnostics() {
     std::vector<ReduceOp> ops = {ReduceOp::Max, ReduceOp::Sum, ReduceOp::Sum, ReduceOp::Sum, ReduceOp::Min};
     if (settings_.twoPhase) {
       enqueueDebrisDiagnostics();
-      ops.push_back(ReduceOp::Sum);
-      ops.push_back(ReduceOp::Sum);
+      for (int r = 0; r < 4; ++r) ops.push_back(ReduceOp::Sum);
     } else {
       diagnostics_.bind(params_, mask_, tileList_, h_, qx_, qy_, slopeSpeed_, outStep_, partial_, tileWet_);
       diagnostics_.launch(tileRange(), kLocal2D);
     }
     const std::vector<double> r = reducer_.reduceRows(partial_, static_cast<std::size_t>(activeTiles_), ops, ntiles);
-    diag_ = {r[0], r[1], r[2], r[3], r[4], settings_.twoPhase ? r[5] : 0.0, settings_.twoPhase ? r[6] : 0.0};
+    const bool tp = settings_.twoPhase;
+    diag_ = {r[0], r[1], r[2], r[3], r[4], tp ? r[5] : 0.0, tp ? r[6] : 0.0, tp ? r[7] : 0.0, tp ? r[8] : 0.0};
   } else {
     diag_ = {};
   }

@@ -45,6 +45,8 @@ struct FlowDiagnostics {
   double minH = 0;       ///< smallest thickness inside the domain (active tiles) [m]
   double volumeSolid = 0;   ///< two-phase: solid volume [m^3]
   double outflowSolid = 0;  ///< two-phase: solid volume out in the last step [m^3]
+  double potential = 0;     ///< two-phase: g sum m z_centroid over both phases [J]
+  double kineticVertical = 0;  ///< two-phase: sum m (u.grad b)^2 / 2, the vertical motion along the bed [J]
 };
 
 /// Running maxima of the two-phase model (spec §8).
@@ -156,6 +158,7 @@ class FlowSolver {
   compute::RawBuffer debrisParams_;
   compute::RealBuffer solid0_, solid1_, delta_, cohesion_, maxima_;
   compute::RealBuffer curvature_;  ///< bed curvature b_xx, b_xy, b_yy (flow/SlopeGravity.hpp)
+  compute::RealBuffer bedSlope_;   ///< bed slope b_x, b_y (2 n values, flow/SlopeGravity.hpp)
   compute::RealBuffer particleBed_, bedImpulse_;
   compute::Buffer<uint8_t> lock0_, lock1_;
   compute::Kernel debrisStage_, debrisTrack_, debrisDiagnostics_;

@@ -40,6 +40,7 @@ void FlowSolver::buildDebris() {
   delta_ = compute::RealBuffer(ctx, n, "bed friction angle");
   cohesion_ = compute::RealBuffer(ctx, n, "cohesion");
   curvature_ = compute::RealBuffer(ctx, 3 * n, "bed curvature");
+  bedSlope_ = compute::RealBuffer(ctx, 2 * n, "bed slope");
   maxima_ = compute::RealBuffer(ctx, kMaximaComponents * n, "two-phase maxima");
   lock0_ = compute::Buffer<uint8_t>(ctx, n, "static solids");
   lock1_ = compute::Buffer<uint8_t>(ctx, n, "static solids stage");
@@ -120,7 +121,7 @@ void FlowSolver::enqueueDebrisTrack() {
 
 void FlowSolver::enqueueDebrisDiagnostics() {
   debrisDiagnostics_.bind(params_, debrisParams_, mask_, tileList_, solid0_, h_, qx_, qy_, slopeSpeed_, delta_,
-                          particleBed_, outStep_, partial_, tileWet_);
+                          particleBed_, bed_, bedSlope_, outStep_, partial_, tileWet_);
   debrisDiagnostics_.launch(tileRange(), kLocal2D);
 }
 

@@ -16,6 +16,7 @@ namespace {
 constexpr const char* kCsvHeader =
     "step,time_s,dt_s,volume_m3,outflow_m3,cumulative_outflow_m3,balance_error,kinetic_energy_J,max_wave_speed_m_s,"
     "fluid_volume_m3,solid_volume_m3,fluid_outflow_m3,solid_outflow_m3,"
+    "potential_energy_J,vertical_kinetic_J,energy_released_J,energy_lost_J,"
     "particles,particle_mass_kg,particle_outflow_kg,particle_kinetic_J,wall_s";
 
 /// Total volume (both phases) and total outflow of the last step.
@@ -54,6 +55,13 @@ Simulation::Simulation(const Scene& scene, const io::RunConfig& config, const st
   }
   for (uint8_t v : scene.dem.valid) domainCells_ += v;
   initialVolume_ = totalVolume(solver_->diagnostics());
+  {
+    // Energy accounting of the grid phases (two-phase model): at the initial state, also on resume
+    // (the solver holds the scene's initial state until the checkpoint is restored).
+    const flow::FlowDiagnostics& d0 = solver_->diagnostics();
+    initialPotential_ = d0.potential;
+    initialMechanical_ = d0.kinetic + d0.kineticVertical + d0.potential;
+  }
   if (scene.particles.enabled && !scene.particles.seeded.x.empty())
     particles_ = std::make_unique<ParticleRun>(*ctx_, scene.dem, scene.particles, *solver_);
   if (mode != OutputMode::Resume) {
@@ -188,10 +196,18 @@ Progress Simulation::stepOnce() {
   const double balance = initialVolume_ > 0 ? (volume + totalOutflow_ - initialVolume_) / initialVolume_ : 0;
   // The single-phase diagnostics give kinetic energy per unit density; the two-phase ones joules.
   const double kinetic = solver_->twoPhase() ? d.kinetic : scene_.settings.debris.fluidDensity * d.kinetic;
-  char line[512];
-  std::snprintf(line, sizeof line, "%lld,%.9g,%.6g,%.12g,%.6g,%.12g,%.3e,%.6g,%.6g,%.12g,%.12g,%.6g,%.6g,", steps_,
+  // Energy (two-phase; zeros for water alone): potential energy, kinetic energy of the motion along
+  // the bed's slope, potential energy released since the start and the mechanical energy lost (to
+  // friction, drag, numerical dissipation and through open boundaries).
+  const double released = solver_->twoPhase() ? initialPotential_ - d.potential : 0.0;
+  const double lost = solver_->twoPhase() ? initialMechanical_ - (d.kinetic + d.kineticVertical + d.potential) : 0.0;
+  lastReleased_ = released;
+  lastLost_ = lost;
+  char line[640];
+  std::snprintf(line, sizeof line,
+                "%lld,%.9g,%.6g,%.12g,%.6g,%.12g,%.3e,%.6g,%.6g,%.12g,%.12g,%.6g,%.6g,%.12g,%.6g,%.9g,%.9g,", steps_,
                 solver_->time(), dt, volume, totalOutflow(d), totalOutflow_, balance, kinetic, d.maxSpeed, d.volume,
-                d.volumeSolid, d.outflow, d.outflowSolid);
+                d.volumeSolid, d.outflow, d.outflowSolid, d.potential, d.kineticVertical, released, lost);
   char wallText[32];
   std::snprintf(wallText, sizeof wallText, ",%.4f", wall());  // wall time last: the one column that differs run to run
   out_->appendDiagnostics(kCsvHeader, std::string(line) + (particles_ ? particles_->csvRow() : "0,0,0,0") + wallText);
@@ -297,6 +313,12 @@ std::string Simulation::summaryJson(const RunSummary& s, Ending ending) const {
     << "  \"wall_time_s\": " << s.wallSeconds << ",\n  \"cell_updates_per_s\": " << s.cellUpdatesPerSecond << ",\n"
     << "  \"volume\": {\"initial_m3\": " << s.initialVolume << ", \"final_m3\": " << s.finalVolume
     << ", \"outflow_m3\": " << s.totalOutflow << ", \"balance_error\": " << s.volumeBalanceError << "}";
+  if (solver_->twoPhase()) {
+    const flow::FlowDiagnostics& dg = solver_->diagnostics();
+    o << ",\n  \"energy\": {\"kinetic_J\": " << dg.kinetic << ", \"vertical_kinetic_J\": " << dg.kineticVertical
+      << ", \"potential_J\": " << dg.potential << ", \"potential_released_J\": " << lastReleased_
+      << ", \"mechanical_lost_J\": " << lastLost_ << "}";
+  }
   if (particles_)
     o << ",\n  \"particles\": {\"count\": " << particles_->count() << ", \"initial_mass_kg\": " << particles_->initialMass()
       << ", \"final_mass_kg\": " << particles_->mass() << ", \"outflow_kg\": " << particles_->cumulativeOutflow()

@@ -106,6 +106,8 @@ class Simulation {
   long long steps_ = 0;
   int reportIndex_ = 0;
   double initialVolume_ = 0, totalOutflow_ = 0, wallBefore_ = 0;
+  double initialPotential_ = 0, initialMechanical_ = 0;  ///< two-phase energy at the initial state [J]
+  double lastReleased_ = 0, lastLost_ = 0;              ///< energy columns of the last step [J]
   std::string seriesIndex_ = "index,time_s,h_file,v_file\n";
   int checkpoints_ = 0;
   // State of the step-wise loop (begin() .. finish()).
