@@ -160,7 +160,10 @@ void addTimeKeys(KeyRegistry& r) {
       << real("Start Time", "0", "min", 0, 1e6, "simulated time at the start")
       << real("End Time", "1", "min", 0, 1e6, "simulated time at the end; must exceed Start Time")
       << real("Timestep", "10", "s", 1e-6, 1e9,
-              "report interval of time series maps and progress (OpenLISEM calls it Timestep)");
+              "report interval of time series maps and progress (OpenLISEM calls it Timestep)")
+      << real("Stop At Rest Fraction", "0", "-", 0, 0.99,
+              "end the run once the kinetic energy (grid phases and particles) has fallen below this fraction "
+              "of its peak, as com1DFA's stopCrit; 0: run to End Time");
   r.addRule({"Start Time", "End Time"}, [](const io::RunConfig& c) -> std::string {
     if (c.real("End Time") > c.real("Start Time")) return "";
     return "End Time (" + io::formatNumber(c.real("End Time")) + " min) must exceed Start Time (" +

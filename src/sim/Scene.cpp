@@ -198,6 +198,7 @@ Scene loadScene(const io::RunConfig& cfg) {
   s.startTime = 60.0 * cfg.real("Start Time");
   s.endTime = 60.0 * cfg.real("End Time");
   s.reportInterval = cfg.real("Timestep");
+  s.restFraction = cfg.real("Stop At Rest Fraction");
   s.precision = cfg.choice("Precision");
   s.device = cfg.text("Device");
   s.outputDir = cfg.directory("Output Directory");

@@ -21,6 +21,7 @@ struct Scene {
   double startTime = 0;          ///< [s]
   double endTime = 60;           ///< [s]
   double reportInterval = 10;    ///< [s]
+  double restFraction = 0;       ///< end once E_kin < restFraction * peak E_kin (0: off)
   std::string precision = "float";
   std::string device;            ///< device selector ("" = automatic)
   std::string outputDir;         ///< absolute

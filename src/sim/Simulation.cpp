@@ -162,7 +162,7 @@ void Simulation::begin() {
   lastCheckpointWall_ = wall();
 }
 
-bool Simulation::atEnd() const { return !(solver_->time() < scene_.endTime * (1 - 1e-15)); }
+bool Simulation::atEnd() const { return atRest_ || !(solver_->time() < scene_.endTime * (1 - 1e-15)); }
 
 Progress Simulation::stepOnce() {
   if (!begun_ || finished_) throw std::logic_error("Simulation::stepOnce outside begin() .. finish()");
@@ -225,6 +225,10 @@ Progress Simulation::stepOnce() {
   while (solver_->time() >= nextCheckpoint_ * (1 - 1e-15)) nextCheckpoint_ += ckInterval;
   // Viewers plot the kinetic energy of everything that moves: grid phases and particles.
   const double allKinetic = kinetic + (particles_ ? particles_->solver().diagnostics().kinetic : 0.0);
+  peakKinetic_ = std::max(peakKinetic_, allKinetic);
+  if (scene_.restFraction > 0 && peakKinetic_ > 0 && allKinetic < scene_.restFraction * peakKinetic_) {
+    atRest_ = true;  // the flow has come to rest: the final maps are those of this state
+  }
   return {solver_->time(), t0, tEnd, steps_, wall(), dt, &d, volume, totalOutflow_, balance, allKinetic};
 }
 
@@ -304,6 +308,9 @@ std::string Simulation::summaryJson(const RunSummary& s, Ending ending) const {
   o << "{\n  \"talus_version\": \"0.1.0\",\n  \"run_file\": \"" << jsonEscape(scene_.runFile) << "\",\n"
     << "  \"status\": \"" << status << "\",\n";
   if (failed) o << "  \"failure\": \"" << jsonEscape(failure_) << "\",\n";
+  if (atRest_)
+    o << "  \"ended_at_rest\": \"kinetic energy below " << scene_.restFraction << " of its peak "
+      << peakKinetic_ << " J\",\n";
   o << "  \"device\": \"" << jsonEscape(d.name) << "\",\n  \"platform\": \"" << jsonEscape(d.platformName) << "\",\n"
     << "  \"precision\": \"" << compute::precisionName(ctx_->precision()) << "\",\n"
     << "  \"grid\": {\"nx\": " << g.nx << ", \"ny\": " << g.ny << ", \"dx\": " << g.dx

@@ -112,6 +112,8 @@ class Simulation {
   int checkpoints_ = 0;
   // State of the step-wise loop (begin() .. finish()).
   bool begun_ = false, finished_ = false;
+  double peakKinetic_ = 0;  ///< largest kinetic energy so far [J] (Stop At Rest Fraction)
+  bool atRest_ = false;     ///< the kinetic energy fell below Stop At Rest Fraction of its peak
   std::chrono::steady_clock::time_point start_;
   double nextReport_ = 0, nextCheckpoint_ = 0, lastCheckpointWall_ = 0;
 };

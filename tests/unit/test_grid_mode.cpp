@@ -74,3 +74,37 @@ TEST(GridMode, SceneWithoutSolidsRunsTheSinglePhasePathBitForBit) {
   EXPECT_FALSE(fs::exists(dir / "a" / "out" / "hsmax.tif"));
   fs::remove_all(dir);
 }
+
+// Stop At Rest Fraction (com1DFA's stopCrit): a granular pile (phi = delta = 34 deg) on a gentle
+// slope (6 deg) slumps and comes to rest well before End Time (2 min). With the criterion on the run
+// ends at rest (summary.json says so, status completed) with the same final deposit as the full run
+// (friction holds it exactly: nothing changes after rest); without it the run goes on to End Time.
+TEST(GridMode, RunEndsWhenTheFlowHasComeToRest) {
+  const fs::path dir = fs::temp_directory_path() / ("talus_rest_" + std::to_string(::getpid()));
+  makeScene(dir, "");  // writes the rasters
+  auto runFile = [&](const std::string& name, const std::string& extra) {
+    std::ofstream(dir / name) << "DEM=dem.tif\nInclude Initial Solids=1\nInitial Solid Height=solids.tif\n"
+                              << "Initial Solid IFA=0.6\nEnd Time=2\nTimestep=30\nPrecision=double\n" << extra;
+    return dir / name;
+  };
+  auto summaryOf = [](const fs::path& out) {
+    std::ifstream in(out / "summary.json");
+    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  };
+  auto simulated = [](const std::string& summary) {
+    const std::size_t at = summary.find("\"simulated_s\": ");
+    return at == std::string::npos ? -1.0 : std::atof(summary.c_str() + at + 15);
+  };
+  const Result stopped = run(runFile("rest.run", "Stop At Rest Fraction=0.001\n"), dir / "stopped");
+  const Result full = run(runFile("full.run", ""), dir / "full");
+  const std::string a = summaryOf(dir / "stopped"), b = summaryOf(dir / "full");
+  EXPECT_NE(a.find("\"ended_at_rest\""), std::string::npos) << a;
+  EXPECT_NE(a.find("\"status\": \"completed\""), std::string::npos) << a;
+  EXPECT_EQ(b.find("\"ended_at_rest\""), std::string::npos) << b;
+  EXPECT_LT(simulated(a), 0.9 * simulated(b)) << a;
+  EXPECT_NEAR(simulated(b), 120.0, 1e-9);
+  const std::vector<double> d1 = io::readRaster((dir / "stopped" / "deposit.tif").string()).values;
+  const std::vector<double> d2 = io::readRaster((dir / "full" / "deposit.tif").string()).values;
+  EXPECT_EQ(d1, d2) << "the deposit at rest is final";
+  fs::remove_all(dir);
+}
