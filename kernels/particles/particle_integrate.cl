@@ -12,26 +12,33 @@
 // its volume and mass (rho_f dV) and is added to `released`, which the host moves to the grid's free
 // fluid (with the particle's momentum) at the end of the grid step. A removed particle takes its
 // pending released fluid out with it (counted in its outflow mass).
-// Walls: a neighbouring cell whose bed rises more steeply than WALL_SLOPE (tan 60 deg) over one cell
-// is a wall for the particles (raised DEM cells: flume walls, obstacles, cliffs). A particle about
-// to cross into it keeps its position along that axis and loses its velocity into it (an
-// inelastic impact): a block does not climb a cliff on its momentum, as the bed-slope force alone
-// would let it (a block at 2.5 m/s climbs 0.32 m).
+// Walls: the particles see the DEM reconstructed as the grid's solids do (kernels/flow/solid_bed.cl,
+// point 2: per axis linear in each cell with the minmod slope, `lslope`), in which a resolved ramp is
+// continuous and a DEM step, a flume wall or an obstacle is a jump at a face. A jump up that rises
+// above the particle's own column (its thickness V/A) is a vertical face to it: a particle about to
+// cross it keeps its position along that axis and loses its velocity into it (an inelastic,
+// unilateral contact; the grid's columns meet the same walls). A lower jump, and any ramp however
+// steep, is climbed on the bed-slope force, which pays the potential energy. So whether a step is a
+// wall depends on its height against the material, not on the cell size (the former rule, a rise
+// steeper than 60 degrees over one cell, made a 1.7 m step a wall at 1 m cells and a 17 m cliff a ramp
+// at 10 m cells).
 #include "particles/particle_common.cl"
 
-#define WALL_SLOPE ((real)1.7320508075688772)
-
-/// 1 when the cell (a, b) is a domain cell of the raster and its bed rises above bed_here by more
-/// than the wall slope over one cell (nodata cells and the raster's outside remove particles instead).
-inline int is_wall(__constant const ParticleParams* p, __global const uchar* mask, __global const real* bed, int a,
-                   int b, real bed_here) {
-  if (a < 0 || b < 0 || a >= p->nx || b >= p->ny || !mask[b * p->nx + a]) return 0;
-  return bed[b * p->nx + a] - bed_here > WALL_SLOPE * p->dx;
+/// Rise of the reconstructed bed at the face from cell `here` to its neighbour (a, b) along one axis
+/// (d = +1 or -1): the neighbour's face value minus ours. 0 when the neighbour is not a domain cell
+/// of the raster (nodata cells and the raster's outside remove particles instead).
+inline real face_rise(__constant const ParticleParams* p, __global const uchar* mask, __global const real* bed,
+                      __global const real* lslope, int here, int a, int b, int axis, int d) {
+  if (a < 0 || b < 0 || a >= p->nx || b >= p->ny || !mask[b * p->nx + a]) return (real)0;
+  const int n = p->nx * p->ny, nb = b * p->nx + a;
+  const real hw = (real)0.5 * p->dx * (real)d;
+  const real own = bed[here] + hw * lslope[axis * n + here], other = bed[nb] - hw * lslope[axis * n + nb];
+  return other - own;
 }
 
 __kernel void particle_integrate(__constant const ParticleParams* p, __global const uchar* mask,
                                  __global const real* bed, __global const real* grad_x, __global const real* grad_y,
-                                 __global const real* gn, __global const real* curv,
+                                 __global const real* gn, __global const real* curv, __global const real* lslope,
                                  __global real* x, __global real* y, __global real* vx, __global real* vy,
                                  __global real* m, __global const real* delta, __global const real* ax,
                                  __global const real* ay, __global real* A, __global const real* divergence,
@@ -76,18 +83,21 @@ __kernel void particle_integrate(__constant const ParticleParams* p, __global co
   }
   real xn = xi + dt * ux, yn = yi + dt * uy;
   {
-    // Walls, axis by axis (a corner is two walls).
+    // Walls, axis by axis (a corner is two walls): a jump of the reconstructed bed above the
+    // particle's column.
     const int here = terrain_cell(p, xi, yi);
     if (here >= 0) {
       const int ci = here % p->nx, cj = here / p->nx;
-      const real b0 = bed[here];
+      const real column = V[i] / A[i];
       const int ni = (int)floor(xn / p->dx), nj = (int)floor(yn / p->dx);
-      if (ni != ci && is_wall(p, mask, bed, ni, cj, b0)) {
+      if (ni != ci && face_rise(p, mask, bed, lslope, here, ni, cj, 0, ni > ci ? 1 : -1) > column) {
         xn = xi;
         ux = 0;
       }
       const int ai = (int)floor(xn / p->dx);
-      if (nj != cj && (is_wall(p, mask, bed, ci, nj, b0) || is_wall(p, mask, bed, ai, nj, b0))) {
+      const int moved = ai != ci && ai >= 0 && ai < p->nx && mask[cj * p->nx + ai];
+      if (nj != cj && (face_rise(p, mask, bed, lslope, here, ci, nj, 1, nj > cj ? 1 : -1) > column ||
+                       (moved && face_rise(p, mask, bed, lslope, cj * p->nx + ai, ai, nj, 1, nj > cj ? 1 : -1) > column))) {
         yn = yi;
         uy = 0;
       }

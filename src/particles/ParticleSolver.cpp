@@ -140,6 +140,12 @@ ParticleSolver::ParticleSolver(compute::Context& ctx, const Grid& grid, const Pa
   gn_ = compute::RealBuffer(ctx, n, "particle g_n");
   gradX_.upload(gx);
   gradY_.upload(gy);
+  limitedSlope_ = compute::RealBuffer(ctx, 2 * n, "particle limited bed slope");
+  {
+    std::vector<double> ls = sg.slopeX;
+    ls.insert(ls.end(), sg.slopeY.begin(), sg.slopeY.end());
+    limitedSlope_.upload(ls);
+  }
   curvature_ = compute::RealBuffer(ctx, 3 * n, "particle bed curvature");
   curvature_.upload(terrain.slopeCorrection ? bedCurvature(grid, terrain.mask, gx, gy) : std::vector<double>(3 * n, 0.0));
   gn_.upload(gn);
@@ -418,7 +424,7 @@ void ParticleSolver::subStep(double ds) {
   forces_.bind(params_, ng.params(), ng.cellStart(), ng.cellEnd(), x_, y_, vx_, vy_, m_, A_, rhoA_, Nxx_, Nyy_, Nxy_, Minv_,
                ax_, ay_);
   forces_.launch(global, kParticleGroup, "particle_forces");
-  integrate_.bind(params_, mask_, bed_, gradX_, gradY_, gn_, curvature_, x_, y_, vx_, vy_, m_, delta_, ax_, ay_, A_, div_, V_, rho_, Vf_,
+  integrate_.bind(params_, mask_, bed_, gradX_, gradY_, gn_, curvature_, limitedSlope_, x_, y_, vx_, vy_, m_, delta_, ax_, ay_, A_, div_, V_, rho_, Vf_,
                   Vf0_, coh_, coh0_, released_, fluidDepth_, outMass_, compute::RealArg{ds});
   integrate_.launch(global, kParticleGroup, "particle_integrate");
   diag_.outflowMass += reducer_.sum(outMass_, count_);

@@ -1,10 +1,15 @@
-// Walls for the particles (kernels/particles/particle_integrate.cl): terrain rising more steeply than
-// 60 degrees from one cell to the next stops a particle's motion into it. A strong block (no
-// yielding) slides on frictionless flat ground, double precision:
+// Walls for the particles (kernels/particles/particle_integrate.cl): a jump of the reconstructed bed
+// (minmod slopes per cell, as the grid's solids see it) higher than a particle's column stops its
+// motion into it; ramps, however steep, and lower steps are climbed on the bed-slope force. A strong
+// block (no yielding) slides on frictionless flat ground, double precision:
 //  - at 8 m/s (v^2 / 2g = 3.26 m) towards a 2.5 m step over one 1 m cell (slope 2.5 > tan 60 deg):
 //    the bed-slope force alone would let it climb the step and run on (measured without walls: the
 //    block crosses); with walls no particle ever enters the raised ground;
-//  - at 5 m/s up a 30 degree ramp (below the wall slope): nothing stops it, it climbs.
+//  - at 5 m/s up a 30 degree ramp: nothing stops it, it climbs;
+//  - the decision does not depend on the cell size: a 17 m cliff at 10 m cells stops a 2 m block at
+//    20 m/s (v^2/2g = 20.4 m; the former rule, a rise steeper than 60 degrees over a cell, took it for
+//    a ramp), and a 5 m thick block at 8 m/s climbs a 2 m step at 1 m cells (the former rule made it
+//    a wall).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -28,8 +33,8 @@ struct Slide {
 /// A 0.5 m block over x in [5, 15) m, y in [5, 10) m of a 60 x 15 grid of 1 m, moving at `speed` along
 /// x; the bed is 0 for i < 30 and rises there by `rise(i)`.
 template <class Rise>
-Slide slideInto(Rise rise, double speed, double T) {
-  const Grid g = Grid::make(60, 15, 1.0);
+Slide slideInto(Rise rise, double speed, double T, double dx = 1.0, double thickness = 0.5) {
+  const Grid g = Grid::make(60, 15, dx);
   ParticleTerrain terrain;
   terrain.mask.assign(g.cells(), 1);
   terrain.bed.assign(g.cells(), 0.0);
@@ -40,7 +45,7 @@ Slide slideInto(Rise rise, double speed, double T) {
   for (int j = 0; j < g.ny; ++j)
     for (int i = 0; i < g.nx; ++i) {
       terrain.bed[g.index(i, j)] = i >= 30 ? rise(i) : 0.0;
-      if (i >= 5 && i < 15 && j >= 5 && j < 10) in.thickness[g.index(i, j)] = 0.5;
+      if (i >= 5 && i < 15 && j >= 5 && j < 10) in.thickness[g.index(i, j)] = thickness;
     }
   in.bed = terrain.bed;
   const SeededParticles seeded = seedParticles(g, in, SeedSpacing{0, 4});
@@ -62,8 +67,8 @@ Slide slideInto(Rise rise, double speed, double T) {
     for (std::size_t q = 0; q < s.size(); ++q) {
       if (!std::isfinite(s.x[q])) continue;
       r.maxX = std::max(r.maxX, s.x[q]);
-      const int i = std::min(g.nx - 1, static_cast<int>(s.x[q]));
-      r.topBed = std::max(r.topBed, terrain.bed[g.index(i, static_cast<int>(s.y[q]))]);
+      const int i = std::min(g.nx - 1, static_cast<int>(s.x[q] / dx));
+      r.topBed = std::max(r.topBed, terrain.bed[g.index(i, static_cast<int>(s.y[q] / dx))]);
     }
   }
   r.mass1 = solver.diagnostics().mass;
@@ -90,4 +95,21 @@ TEST(ParticleWall, BlockStillClimbsARampBelowTheWallSlope) {
   std::printf("30 degree ramp: farthest particle x = %.3f m, highest bed reached %.2f m\n", r.maxX, r.topBed);
   EXPECT_GT(r.topBed, 0.5);
   EXPECT_EQ(r.mass1, r.mass0);
+}
+
+TEST(ParticleWall, WallsDependOnTheStepAgainstTheMaterialNotOnTheCellSize) {
+  // 17 m cliff at 10 m cells (slope 1.7 per cell), a 2 m block at 20 m/s: a wall.
+  const Slide cliff = slideInto([](int) { return 17.0; }, 20.0, 15.0, 10.0, 2.0);
+  std::printf("17 m cliff, 10 m cells, 2 m block at 20 m/s: farthest particle x = %.1f m, highest bed %.1f m\n",
+              cliff.maxX, cliff.topBed);
+  EXPECT_LT(cliff.maxX, 300.0);
+  EXPECT_EQ(cliff.topBed, 0.0);
+  // 2 m step at 1 m cells (slope 2 per cell), a 5 m block at 8 m/s (v^2/2g = 3.3 m): climbed.
+  const Slide step = slideInto([](int) { return 2.0; }, 8.0, 4.0, 1.0, 5.0);
+  std::printf("2 m step, 1 m cells, 5 m block at 8 m/s: farthest particle x = %.1f m, highest bed %.1f m\n",
+              step.maxX, step.topBed);
+  EXPECT_EQ(step.topBed, 2.0);
+  EXPECT_GT(step.maxX, 31.0);
+  EXPECT_EQ(cliff.mass1, cliff.mass0);
+  EXPECT_EQ(step.mass1, step.mass0);
 }

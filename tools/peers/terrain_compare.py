@@ -1,0 +1,259 @@
+#!/usr/bin/env python3
+"""Talus vs AvaFrame com1DFA on the terrain cases (issue 13, part 5).
+
+Subcommands (run with a python that has numpy and rasterio, e.g. /work/avaframe-venv/bin/python):
+
+  prep CASE_DIR WORK_DIR [--phi-deg 25]
+      writes WORK_DIR/talus/<case>/{solids_vertical.tif, case.run}: the release thickness of
+      release.tif (slope-normal, as AvaFrame reads it) converted to the vertical thickness Talus
+      reads (h_v = h_n / cos(theta) = h_n * sqrt(1 + |grad b|^2), so both codes start with the
+      same volume), and a two-phase, solids-only run-file with Coulomb bed friction.
+
+  table WORK_DIR CASE [CASE ...] [--md FILE]
+      reads the AvaFrame outputs (WORK_DIR/avaframe/<case>) and the Talus outputs
+      (WORK_DIR/talus/<case>/out), computes the metrics below and prints a Markdown table.
+
+Metrics (cells on the DEM grid; thicknesses compared slope-normal: Talus' vertical hsmax/hsfinal are
+multiplied by cos(theta) of the DEM, AvaFrame's pft/FT are slope-normal already):
+  affected area   planimetric area of cells with peak thickness > 0.1 m
+  deposit area    planimetric area of cells with final thickness > 0.1 m
+  peak speed      maximum of pfv (AvaFrame) / vsmax (Talus): over all cells, over the affected cells,
+                  and the 99th percentile over the affected cells
+  energy bound    sqrt(2 g (z_top - z_min)): frictionless free-fall speed from the release's highest
+                  cell to the lowest affected cell (in comparison.json)
+  travel dist.    largest horizontal distance from the release's highest cell to an affected cell
+  alpha           atan((z_top - z_far) / travel distance) for that farthest affected cell
+  runout          largest projection of an affected cell, measured from the release centroid, onto
+                  the main flow direction: the unit vector from the release centroid to the
+                  centroid of the union of both codes' affected areas (one direction per case)
+  Jaccard         |A_avaframe & A_talus| / |A_avaframe | A_talus| of the affected areas
+"""
+import argparse
+import glob
+import json
+import math
+import pathlib
+import sys
+
+import numpy as np
+import rasterio
+
+THRESH = 0.1
+
+
+def read(path):
+    with rasterio.open(path) as ds:
+        a = ds.read(1).astype(np.float64)
+        nod = ds.nodata
+        prof = ds.profile
+        tr = ds.transform
+    if nod is not None and not (isinstance(nod, float) and math.isnan(nod)):
+        a = np.where(a == nod, np.nan, a)
+    return a, prof, tr
+
+
+def slope_cos(dem, cell):
+    """cos(theta) from centred differences (one-sided at nodata edges)."""
+    z = dem.copy()
+    gy, gx = np.gradient(np.where(np.isnan(z), np.nanmean(z), z), cell)
+    # cells next to nodata: fall back to 0 slope contribution from the nodata side is not exact,
+    # but release and flow stay well inside the valid area
+    g2 = gx * gx + gy * gy
+    c = 1.0 / np.sqrt(1.0 + g2)
+    c[np.isnan(dem)] = np.nan
+    return c
+
+
+def prep(args):
+    case_dir = args.case_dir.resolve()
+    case = case_dir.name
+    out = (args.work_dir / "talus" / case).resolve()
+    out.mkdir(parents=True, exist_ok=True)
+    dem, prof, tr = read(case_dir / "dem.tif")
+    rel, rprof, _ = read(case_dir / "release.tif")
+    cell = abs(tr.a)
+    cth = slope_cos(dem, cell)
+    hv = np.where(rel > 0, rel / cth, 0.0)
+    hv = np.nan_to_num(hv, nan=0.0)
+    p = dict(rprof)
+    p.update(dtype="float32", nodata=None, compress="deflate")
+    with rasterio.open(out / "solids_vertical.tif", "w", **p) as ds:
+        ds.write(hv.astype(np.float32), 1)
+    vol_v = float(hv.sum() * cell * cell)
+    phi = math.radians(args.phi_deg)
+    run = f"""[Talus run file]
+# {case}: Coulomb comparison with AvaFrame com1DFA (tools/peers/terrain_compare.py prep).
+# Release = {case_dir}/release.tif (slope-normal, 1 m) converted to vertical thickness.
+# Vertical release volume sum(h_v dx dy) = {vol_v:.1f} m3.
+[Input]
+Map Directory=.
+DEM={case_dir}/dem.tif
+Include Initial Water=0
+[Solids]
+Include Initial Solids=1
+Initial Solid Height=solids_vertical.tif
+Initial Solid IFA={phi:.6f}
+Bed Friction Equals IFA=0
+Bed Friction Angle={phi:.6f}
+Earth Pressure=constant
+Earth Pressure Coefficient=1
+Drag Law=off
+[Time]
+End Time={args.tend_s / 60.0:.6f}
+Timestep=10
+[Flow]
+Slope Correction=1
+Depth Pressure=cos4
+[Numerics]
+Precision=double
+[Output]
+Report Series=0
+Output Directory=out
+"""
+    (out / "case.run").write_text(run)
+    print(json.dumps({"case": case, "run": str(out / "case.run"), "release_volume_vertical_m3": vol_v,
+                      "release_cells": int((rel > 0).sum())}))
+
+
+def metrics(peak, final, speed, dem, rel, cell, tr, direction=None):
+    nr, nc = dem.shape
+    rows, cols = np.mgrid[0:nr, 0:nc]
+    x = tr.c + (cols + 0.5) * tr.a
+    y = tr.f + (rows + 0.5) * tr.e
+    aff = np.nan_to_num(peak, nan=0.0) > THRESH
+    dep = np.nan_to_num(final, nan=0.0) > THRESH
+    relm = rel > 0
+    zr = np.where(relm, dem, -np.inf)
+    itop = np.unravel_index(np.argmax(zr), zr.shape)
+    xt, yt, zt = x[itop], y[itop], dem[itop]
+    d = np.hypot(x - xt, y - yt)
+    dm = np.where(aff, d, -1)
+    ifar = np.unravel_index(np.argmax(dm), dm.shape)
+    res = {
+        "affected_m2": float(aff.sum() * cell * cell),
+        "deposit_m2": float(dep.sum() * cell * cell),
+        "peak_thickness_m": float(np.nanmax(peak)),
+        "peak_speed_ms": float(np.nanmax(speed)),
+        "peak_speed_aff_ms": float(np.nanmax(np.where(aff, speed, np.nan))),
+        "p99_speed_aff_ms": float(np.nanpercentile(speed[aff], 99)),
+        "energy_bound_ms": float(math.sqrt(2 * 9.81 * (zt - np.nanmin(np.where(aff, dem, np.nan))))),
+        "travel_m": float(dm[ifar]),
+        "alpha_deg": float(math.degrees(math.atan2(zt - dem[ifar], dm[ifar]))) if dm[ifar] > 0 else float("nan"),
+        "z_far": float(dem[ifar]),
+    }
+    xc, yc = x[relm].mean(), y[relm].mean()
+    if direction is not None:
+        proj = (x - xc) * direction[0] + (y - yc) * direction[1]
+        res["runout_m"] = float(np.where(aff, proj, -np.inf).max())
+    return res, aff, (x, y, xc, yc)
+
+
+def first(pattern):
+    g = sorted(glob.glob(pattern))
+    if not g:
+        raise FileNotFoundError(pattern)
+    return g[0]
+
+
+def on_grid(a, shape):
+    """AvaFrame runs on the DEM grid here (meshCellSize = DEM cell size); if it remeshed anyway,
+    map its lower-left-anchored grid onto the DEM grid by index (see the case PROVENANCE.md)."""
+    if a.shape == shape:
+        return a
+    out = np.full(shape, np.nan)
+    r = min(a.shape[0], shape[0])
+    c = min(a.shape[1], shape[1])
+    out[shape[0] - r:, :c] = a[a.shape[0] - r:, :c]
+    return out
+
+
+def table(args):
+    work = args.work_dir.resolve()
+    lines = []
+    hdr = ("| case | code | sim. time [s] | wall [s] | peak thickness [m] | peak speed [m/s]: all / affected cells / p99 affected | affected area > 0.1 m [m2] "
+           "| deposit area > 0.1 m [m2] | runout along flow dir. [m] | travel dist. from release top [m] | alpha [deg] |")
+    lines.append(hdr)
+    lines.append("|" + "---|" * 11)
+    jac = []
+    raw = {}
+    for case in args.cases:
+        cdir = pathlib.Path(args.data) / case
+        dem, _, tr = read(cdir / "dem.tif")
+        rel, _, _ = read(cdir / "release.tif")
+        cell = abs(tr.a)
+        cth = slope_cos(dem, cell)
+        runs = {}
+        # AvaFrame
+        adir = work / "avaframe" / case
+        if (adir / "run_info.json").exists():
+            pk = adir / "Outputs" / "com1DFA" / "peakFiles"
+            info = json.loads((adir / "run_info.json").read_text())
+            pft = on_grid(read(first(str(pk / "*_pft.tif")))[0], dem.shape)
+            pfv = on_grid(read(first(str(pk / "*_pfv.tif")))[0], dem.shape)
+            ft = on_grid(read(first(str(pk / "*_FT.tif")))[0], dem.shape)
+            ts = sorted(glob.glob(str(pk / "timeSteps" / "*_FT_t*.tif")))
+            tfin = float(ts[-1].rsplit("_t", 1)[1][:-4]) if ts else float("nan")
+            runs["AvaFrame com1DFA"] = (pft, ft, pfv, tfin, info["wall_s"])
+        # Talus
+        tdir = work / "talus" / case / "out"
+        if (tdir / "summary.json").exists():
+            s = json.loads((tdir / "summary.json").read_text())
+            hs = read(tdir / "hsmax.tif")[0] * cth
+            hf = read(tdir / "hsfinal.tif")[0] * cth
+            vs = read(tdir / "vsmax.tif")[0]
+            tsim = s.get("simulated_s", s.get("simulated_seconds", s.get("end_time_s", float("nan"))))
+            wall = s.get("wall_s", s.get("wall_time_s", float("nan")))
+            runs["Talus (" + str(s.get("status", "?")) + ")"] = (hs, hf, vs, tsim, wall)
+        # common direction: release centroid -> centroid of the union of affected areas
+        masks = {k: np.nan_to_num(v[0], nan=0.0) > THRESH for k, v in runs.items()}
+        if not masks:
+            continue
+        union = np.logical_or.reduce(list(masks.values()))
+        _, _, (x, y, xc, yc) = metrics(*next(iter(runs.values()))[:3], dem, rel, cell, tr)
+        dx, dy = x[union].mean() - xc, y[union].mean() - yc
+        n = math.hypot(dx, dy)
+        direction = (dx / n, dy / n)
+        raw[case] = {"direction": direction}
+        for name, (pk_, fin, spd, tsim, wall) in runs.items():
+            m, aff, _ = metrics(pk_, fin, spd, dem, rel, cell, tr, direction)
+            m.update(sim_time_s=tsim, wall_s=wall)
+            raw[case][name] = m
+            lines.append(f"| {case} | {name} | {tsim:.1f} | {wall:.1f} | {m['peak_thickness_m']:.2f} | "
+                         f"{m['peak_speed_ms']:.1f} / {m['peak_speed_aff_ms']:.1f} / {m['p99_speed_aff_ms']:.1f} | {m['affected_m2']:.0f} | {m['deposit_m2']:.0f} | "
+                         f"{m['runout_m']:.0f} | {m['travel_m']:.0f} | {m['alpha_deg']:.1f} |")
+        if len(masks) == 2:
+            a, b = masks.values()
+            j = (a & b).sum() / max(1, (a | b).sum())
+            jac.append(f"| {case} | {j:.3f} | {(a & b).sum() * cell * cell:.0f} | {(a | b).sum() * cell * cell:.0f} |")
+            raw[case]["jaccard"] = float(j)
+    lines.append("")
+    if jac:
+        lines.append("| case | Jaccard of affected areas | intersection [m2] | union [m2] |")
+        lines.append("|---|---|---|---|")
+        lines.extend(jac)
+    txt = "\n".join(lines) + "\n"
+    print(txt)
+    (work / "comparison.json").write_text(json.dumps(raw, indent=2, default=float))
+    if args.md:
+        pathlib.Path(args.md).write_text(txt)
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    sub = ap.add_subparsers(dest="cmd", required=True)
+    p = sub.add_parser("prep")
+    p.add_argument("case_dir", type=pathlib.Path)
+    p.add_argument("work_dir", type=pathlib.Path)
+    p.add_argument("--phi-deg", type=float, default=25.0)
+    p.add_argument("--tend-s", type=float, default=150.0)
+    t = sub.add_parser("table")
+    t.add_argument("work_dir", type=pathlib.Path)
+    t.add_argument("cases", nargs="+")
+    t.add_argument("--data", default="/work/shared/data/terrain")
+    t.add_argument("--md")
+    a = ap.parse_args()
+    prep(a) if a.cmd == "prep" else table(a)
+
+
+if __name__ == "__main__":
+    sys.exit(main())
