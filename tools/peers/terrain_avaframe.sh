@@ -29,6 +29,8 @@ fi
 PY="$VENV/bin/python"
 [ -x "$TALUS" ] || { echo "no talus binary (set TALUS)" >&2; exit 1; }
 mkdir -p "$WORK"
+{ date -u; echo "talus: $TALUS"; sha256sum "$TALUS"; git -C "$ROOT" rev-parse HEAD 2>/dev/null || true
+  "$PY" -c "import importlib.metadata as m; print('avaframe', m.version('avaframe'))"; } > "$WORK/provenance.txt"
 
 for c in "${CASES[@]}"; do
   echo "== $c: AvaFrame com1DFA"
