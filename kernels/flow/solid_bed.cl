@@ -12,6 +12,9 @@
 //    bends). g_n = g cos^2(theta) is the plane value; `terrain_factor` is (g + u^T H u) / g, >= 0
 //    (a mass thrown off a convex edge is in free fall: no normal stress). With it the model
 //    conserves the true mechanical energy (u^2 + (u.grad b)^2) / 2 + g b of a frictionless bead.
+//    Off by default (`Curvature Acceleration`, FlowSettings::curvature: the curvature field is then
+//    zero): on a rough real DEM the centred curvature at high speed rectifies the DEM's noise (zero
+//    normal stress on convex spots, a multiple of g on concave ones) and fast thin layers gain energy.
 // 2. The reconstructed bed. Per axis the bed is linear in each cell with the minmod slope of its two
 //    one-sided differences (the one-sided difference next to outside cells), whatever the solids in
 //    and around the cell: a plane is exact, and a DEM step, a pit rim or a kink is a jump of the

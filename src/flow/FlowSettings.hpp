@@ -46,6 +46,10 @@ struct FlowSettings {
   Boundary nodata = Boundary::Wall; ///< faces to nodata cells
   bool skipDryTiles = true;         ///< skip tiles with no water within one tile
   bool slopeCorrection = true;      ///< g_n = g cos^2(theta) (spec §1); off: g everywhere
+  /// Solids: the bed's curvature in g_n (terrain-following gravity, kernels/flow/solid_bed.cl);
+  /// off by default: on a rough real DEM the discrete curvature makes fast thin layers gain energy
+  /// (docs/terrain_comparison.md)
+  bool curvature = false;
   DepthPressure depthPressure = DepthPressure::Cos2;  ///< g_p = g cos^2 (default) or g cos^4
   bool twoPhase = false;            ///< solids on the grid (grid mode of spec §3); false: water only
   /// Hybrid mode (two-phase only): the particles' confined phase is part of both phases' bed and

@@ -109,7 +109,7 @@ void FlowSolver::setInput(const FlowInput& in, double startTime) {
   gn_.upload(sg.gn);
   slopeSpeed_.upload(sg.slopeSpeed);
   if (settings_.twoPhase) {
-    curvature_.upload(sg.curvature);
+    curvature_.upload(settings_.curvature ? sg.curvature : std::vector<double>(sg.curvature.size(), 0.0));
     std::vector<double> slope = sg.slopeX;
     slope.insert(slope.end(), sg.slopeY.begin(), sg.slopeY.end());
     bedSlope_.upload(slope);

@@ -147,7 +147,8 @@ ParticleSolver::ParticleSolver(compute::Context& ctx, const Grid& grid, const Pa
     limitedSlope_.upload(ls);
   }
   curvature_ = compute::RealBuffer(ctx, 3 * n, "particle bed curvature");
-  curvature_.upload(terrain.slopeCorrection ? bedCurvature(grid, terrain.mask, gx, gy) : std::vector<double>(3 * n, 0.0));
+  curvature_.upload(terrain.slopeCorrection && terrain.curvature ? bedCurvature(grid, terrain.mask, gx, gy)
+                                                                 : std::vector<double>(3 * n, 0.0));
   gn_.upload(gn);
   gnHost_ = gn;
   params_ = compute::RawBuffer(ctx, sizeof(ParticleParamsT<double>), "particle parameters");

@@ -28,6 +28,7 @@ struct ParticleTerrain {
   std::vector<uint8_t> mask;  ///< 1 inside the domain
   std::vector<double> bed;    ///< b [m]
   bool slopeCorrection = true;  ///< g_n = g cos^2(theta) (spec §1)
+  bool curvature = false;       ///< the bed's curvature in g_n (flow::FlowSettings::curvature)
 };
 
 /// Per-particle material (one value per seeded particle, or one value for all when of size 1).

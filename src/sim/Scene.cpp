@@ -121,6 +121,7 @@ Scene loadScene(const io::RunConfig& cfg) {
       hs = m.hs;
       s.flow.h = m.hf;
       s.particles.terrain.slopeCorrection = cfg.flag("Slope Correction");
+      s.particles.terrain.curvature = cfg.flag("Curvature Acceleration");
     }
     bool any = false;
     for (std::size_t k = 0; k < hs.size(); ++k) any = any || (s.dem.valid[k] && hs[k] > 0.0);
@@ -192,6 +193,7 @@ Scene loadScene(const io::RunConfig& cfg) {
   f.edge = flow::parseBoundary(cfg.choice("Boundary Type"));
   f.nodata = flow::parseBoundary(cfg.choice("Nodata Boundary Type"));
   f.slopeCorrection = cfg.flag("Slope Correction");
+  f.curvature = cfg.flag("Curvature Acceleration");
   f.skipDryTiles = cfg.flag("Skip Dry Tiles");
   f.depthPressure = flow::parseDepthPressure(cfg.choice("Depth Pressure"));
 
