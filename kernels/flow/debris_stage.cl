@@ -42,6 +42,9 @@
 #ifndef DEBRIS_OBSTACLE
 #define DEBRIS_OBSTACLE 0
 #endif
+#ifndef DEBRIS_CURVATURE
+#define DEBRIS_CURVATURE 0
+#endif
 
 #define NSOLID 6  // solid state components: h_s, q_sx, q_sy, h_s phi, h_s rho_s, h_s d
 
@@ -139,24 +142,24 @@ inline Material material_of(__constant const FlowParams* p, __constant const Deb
   return m;
 }
 
-/// Lateral pressure Pi [m^2/s^2] (per unit solid density and thickness) with coefficient K.
-inline real lateral_pressure(real K, Material m, real g, real H) {
-  return fmax((real)0, (real)0.5 * K * ((real)1 - m.gamma) * g * H - (real)2 * m.c_over_rho * sqrt(K));
-}
-
-/// Pressure slope a = K (1 - gamma) g_p / 2 and cohesion term c0 = 2 c sqrt(K) / rho_s of the lateral
-/// pressure Pi = max(0, a H - c0) (see lateral_pressure), for a solid side of solid_bed.cl.
+/// A solid side of solid_bed.cl with the lateral pressure Pi [m^2/s^2] (per unit solid density and
+/// thickness) of coefficient K: Pi = max(0, a H - c0), a = K (1 - gamma) g_p / 2, c0 = 2 c sqrt(K) / rho_s.
 inline SolidSide solid_side(real h, real z, real un, real ut, real hf, real K, Material m, real g, real geff) {
   const SolidSide s = {h, z, un, ut, (real)0.5 * K * ((real)1 - m.gamma) * g, (real)2 * m.c_over_rho * sqrt(K), hf, geff};
   return s;
 }
 
-/// terrain_factor (solid_bed.cl) of cell k with its solid velocity in state S.
+/// terrain_factor (solid_bed.cl) of cell k with its solid velocity in state S; 1 when the curvature
+/// term is compiled out (Curvature Acceleration off, the default).
 inline real cell_factor(__constant const FlowParams* p, __constant const DebrisParams* dp, __global const real* curv,
                         __global const real* S, int n, int k) {
+#if DEBRIS_CURVATURE
   const real hs = S[k];
   const real u = solid_velocity(hs, S[n + k], p->h_dry, dp->film_h), v = solid_velocity(hs, S[2 * n + k], p->h_dry, dp->film_h);
   return terrain_factor(curv, n, k, u, v);
+#else
+  return (real)1;
+#endif
 }
 
 /// Exact relaxation of the phase velocities by drag with virtual mass over ds (momentum-conserving):

@@ -23,6 +23,9 @@
 // steeper than 60 degrees over one cell, made a 1.7 m step a wall at 1 m cells and a 17 m cliff a ramp
 // at 10 m cells).
 #include "particles/particle_common.cl"
+#ifndef PARTICLE_CURVATURE
+#define PARTICLE_CURVATURE 0
+#endif
 
 /// Rise of the reconstructed bed at the face from cell `here` to its neighbour (a, b) along one axis
 /// (d = +1 or -1): the neighbour's face value minus ours. 0 when the neighbour is not a domain cell
@@ -64,11 +67,15 @@ __kernel void particle_integrate(__constant const ParticleParams* p, __global co
   // Terrain-following gravity (kernels/flow/solid_bed.cl, point 1; Denlinger & Iverson 2004): the
   // bed's normal reaction per unit mass is g_n (g + v^T H v) / g, H the bed's curvature, in the
   // bed-slope force and in the basal friction alike.
+#if PARTICLE_CURVATURE
   const int ncell = p->nx * p->ny;
   const real u0 = vx[i], v0 = vy[i];
   const real cv = (terrain_sample(p, curv, xi, yi) * u0 * u0 + terrain_sample(p, curv + 2 * ncell, xi, yi) * v0 * v0) +
                   (real)2 * terrain_sample(p, curv + ncell, xi, yi) * (u0 * v0);
   const real g = terrain_sample(p, gn, xi, yi) * fmax((real)0, (real)1 + cv / (real)GRAVITY);
+#else
+  const real g = terrain_sample(p, gn, xi, yi);  // (Curvature Acceleration off: compiled out)
+#endif
   const real bx = terrain_sample(p, grad_x, xi, yi), by = terrain_sample(p, grad_y, xi, yi);
   real ux = vx[i] + dt * (ax[i] - g * bx), uy = vy[i] + dt * (ay[i] - g * by);
   const real speed = sqrt(ux * ux + uy * uy);

@@ -50,7 +50,9 @@ void FlowSolver::buildDebris() {
                            // The viscous stresses are compiled out when both Reynolds numbers are off.
                            " -DDEBRIS_VISCOUS=" + (settings_.debris.viscous() ? "1" : "0") +
                            // The particle bed of the hybrid mode is compiled out in grid mode.
-                           " -DDEBRIS_OBSTACLE=" + (settings_.particleBed ? "1" : "0");
+                           " -DDEBRIS_OBSTACLE=" + (settings_.particleBed ? "1" : "0") +
+                           // The bed's curvature term is compiled out unless asked for.
+                           " -DDEBRIS_CURVATURE=" + (settings_.curvature && settings_.slopeCorrection ? "1" : "0");
   // Hybrid mode: the particles' bed (H_c, u_c, v_c per cell) and the impulse it takes per step
   // (x, y); one-value placeholders otherwise (the kernel does not read them).
   const std::size_t bedCells = settings_.particleBed ? n : 1;

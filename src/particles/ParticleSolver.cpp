@@ -148,15 +148,17 @@ ParticleSolver::ParticleSolver(compute::Context& ctx, const Grid& grid, const Pa
   }
   curvature_ = compute::RealBuffer(ctx, 3 * n, "particle bed curvature");
   curvature_.upload(terrain.slopeCorrection && terrain.curvature ? bedCurvature(grid, terrain.mask, gx, gy)
-                                                                 : std::vector<double>(3 * n, 0.0));
+                                                                 : std::vector<double>(3 * n, 0.0));  // unread when off
   gn_.upload(gn);
   gnHost_ = gn;
   params_ = compute::RawBuffer(ctx, sizeof(ParticleParamsT<double>), "particle parameters");
   density_ = compute::Kernel(ctx.program("particles/particle_density.cl"), "particle_density");
   stress_ = compute::Kernel(ctx.program("particles/particle_stress.cl"), "particle_stress");
   forces_ = compute::Kernel(ctx.program("particles/particle_forces.cl"), "particle_forces");
-  integrate_ = compute::Kernel(ctx.program("particles/particle_integrate.cl"), "particle_integrate");
-  speedKernel_ = compute::Kernel(ctx.program("particles/particle_integrate.cl"), "particle_totals");
+  const bool curved = terrain.slopeCorrection && terrain.curvature;
+  const std::string integrateOpts = std::string("-DPARTICLE_CURVATURE=") + (curved ? "1" : "0");
+  integrate_ = compute::Kernel(ctx.program("particles/particle_integrate.cl", integrateOpts), "particle_integrate");
+  speedKernel_ = compute::Kernel(ctx.program("particles/particle_integrate.cl", integrateOpts), "particle_totals");
   // The neighbour grid covers the raster with a margin of one support, so particles near the edge
   // see all their neighbours; particles leave the raster through the integrate kernel.
   const double r = 2 * h_;
