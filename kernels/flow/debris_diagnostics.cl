@@ -30,7 +30,8 @@ void debris_tile_diagnostics(__constant const FlowParams* p, __constant const De
   const int i = c.x, j = c.y;
   const int lid = get_local_id(1) * TILE + get_local_id(0);
   const int n = p->nx * p->ny;
-  real speed = 0, volf = 0, outf = 0, ke = 0, hmin = REAL_MAX, vols = 0, outs = 0, pe = 0, kev = 0;
+  real speed = 0, volf = 0, outf = 0, ke = 0, hmin = REAL_MAX, vols = 0, outs = 0, pe = 0, kev = 0, flow = 0,
+       wave_wet = 0;
   int wet = 0;
   if (i < p->nx && j < p->ny && cell_inside(p, mask, i, j)) {
     const int k = cell_index(p, i, j);
@@ -73,14 +74,22 @@ void debris_tile_diagnostics(__constant const FlowParams* p, __constant const De
     const real ws = us * slope[k] + vs * slope[n + k], wf = uf * slope[k] + vf * slope[n + k];
     kev = (real)0.5 * (rho_s * hs * ws * ws + dp->rho_f * h * wf * wf) * area;
     hmin = fmin(hs, h);
+    // Health-check quantities over phases thicker than the dry threshold (films below it carry no
+    // velocity): the material speed of either phase and the CFL wave speed.
+    if (hs > p->h_dry) flow = sqrt(us * us + vs * vs);
+    if (h > p->h_dry) flow = fmax(flow, sqrt(uf * uf + vf * vf));
+    if (hs > p->h_dry || h > p->h_dry) wave_wet = speed;
     wet = H > (real)0 || isnan(H);
-    if (isnan(H) || isnan(S[n + k]) || isnan(S[2 * n + k]) || isnan(qfx[k]) || isnan(qfy[k])) speed = NAN;
+    if (isnan(H) || isnan(S[n + k]) || isnan(S[2 * n + k]) || isnan(qfx[k]) || isnan(qfy[k]))
+      speed = flow = wave_wet = NAN;
   }
   s[DIAG_SPEED * TILE_CELLS + lid] = speed;
   s[DIAG_VOLUME * TILE_CELLS + lid] = volf;
   s[DIAG_OUTFLOW * TILE_CELLS + lid] = outf;
   s[DIAG_KINETIC * TILE_CELLS + lid] = ke;
   s[DIAG_MIN_H * TILE_CELLS + lid] = hmin;
+  s[DIAG_FLOW_SPEED * TILE_CELLS + lid] = flow;
+  s[DIAG_WAVE_WET * TILE_CELLS + lid] = wave_wet;
   s[DIAG_VOLUME_S * TILE_CELLS + lid] = vols;
   s[DIAG_OUTFLOW_S * TILE_CELLS + lid] = outs;
   s[DIAG_POTENTIAL * TILE_CELLS + lid] = pe;

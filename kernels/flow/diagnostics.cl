@@ -18,14 +18,18 @@
 #define DIAG_OUTFLOW 2
 #define DIAG_KINETIC 3
 #define DIAG_MIN_H 4
-#define DIAG_VOLUME_S 5   // two-phase only: solid volume
-#define DIAG_OUTFLOW_S 6  // two-phase only: solid outflow
-#define DIAG_POTENTIAL 7  // two-phase only: potential energy g sum m (centroid height) [J]
-#define DIAG_KINETIC_V 8  // two-phase only: kinetic energy of the vertical motion m (u.grad b)^2 / 2 [J]
-#define DIAG_MAX_ROWS 9
+#define DIAG_FLOW_SPEED 5  // max material speed |u| of cells thicker than Minimum Flow Height [m/s]
+#define DIAG_WAVE_WET 6    // the CFL wave speed over cells thicker than Minimum Flow Height [m/s]
+#define DIAG_SINGLE_ROWS 7
+#define DIAG_VOLUME_S 7    // two-phase only: solid volume
+#define DIAG_OUTFLOW_S 8   // two-phase only: solid outflow
+#define DIAG_POTENTIAL 9   // two-phase only: potential energy g sum m (centroid height) [J]
+#define DIAG_KINETIC_V 10  // two-phase only: kinetic energy of the vertical motion m (u.grad b)^2 / 2 [J]
+#define DIAG_MAX_ROWS 11
+#define DIAG_IS_MAX(r) ((r) == DIAG_SPEED || (r) == DIAG_FLOW_SPEED || (r) == DIAG_WAVE_WET)
 #define TILE_CELLS (TILE * TILE)
 
-/// Reduces `rows` values per work-item (row r in s[r * TILE_CELLS + lid]; row DIAG_SPEED by max with
+/// Reduces `rows` values per work-item (row r in s[r * TILE_CELLS + lid]; the speed rows by max with
 /// NaN propagation, DIAG_MIN_H by min, the others by sum) and the wet flags, then work-item 0 writes
 /// the tile's partials at its slot in the active list and its wet flag.
 inline void reduce_tile(__local real* s, __local int* s_wet, int rows, int lid, int slot, int ntiles,
@@ -36,7 +40,7 @@ inline void reduce_tile(__local real* s, __local int* s_wet, int rows, int lid, 
       for (int r = 0; r < rows; ++r) {
         const real x = s[r * TILE_CELLS + lid], y = s[r * TILE_CELLS + lid + step];
         real v;
-        if (r == DIAG_SPEED) v = (isnan(x) || isnan(y)) ? NAN : fmax(x, y);
+        if (DIAG_IS_MAX(r)) v = (isnan(x) || isnan(y)) ? NAN : fmax(x, y);
         else if (r == DIAG_MIN_H) v = fmin(x, y);
         else v = x + y;
         s[r * TILE_CELLS + lid] = v;
@@ -56,12 +60,12 @@ void flow_tile_diagnostics(__constant const FlowParams* p, __global const uchar*
                            __global const real* h, __global const real* qx, __global const real* qy,
                            __global const real* slope_speed, __global const real* out_step, __global real* partial,
                            __global int* tile_wet) {
-  __local real s[5 * TILE_CELLS];
+  __local real s[DIAG_SINGLE_ROWS * TILE_CELLS];
   __local int s_wet[TILE_CELLS];
   const int2 c = tile_cell(p, tile_list);
   const int i = c.x, j = c.y;
   const int lid = get_local_id(1) * TILE + get_local_id(0);
-  real speed = 0, vol = 0, out = 0, ke = 0, hmin = REAL_MAX;
+  real speed = 0, vol = 0, out = 0, ke = 0, hmin = REAL_MAX, flow = 0, wave_wet = 0;
   int wet = 0;
   if (i < p->nx && j < p->ny && cell_inside(p, mask, i, j)) {
     const int k = cell_index(p, i, j);
@@ -75,16 +79,24 @@ void flow_tile_diagnostics(__constant const FlowParams* p, __global const uchar*
     out = out_step[k];
     ke = (real)0.5 * hk * (u * u + v * v) * area;
     hmin = hk;
+    // The health check's quantities: films at or below the dry threshold carry no velocity, so
+    // neither their speed nor their wave speed says anything about the flow's energy or stability.
+    if (hk > p->h_dry) {
+      flow = sqrt(u * u + v * v);
+      wave_wet = speed;
+    }
     wet = hk > (real)0 || isnan(hk);
-    if (isnan(hk) || isnan(qx[k]) || isnan(qy[k])) speed = NAN;
+    if (isnan(hk) || isnan(qx[k]) || isnan(qy[k])) speed = flow = wave_wet = NAN;
   }
   s[DIAG_SPEED * TILE_CELLS + lid] = speed;
   s[DIAG_VOLUME * TILE_CELLS + lid] = vol;
   s[DIAG_OUTFLOW * TILE_CELLS + lid] = out;
   s[DIAG_KINETIC * TILE_CELLS + lid] = ke;
   s[DIAG_MIN_H * TILE_CELLS + lid] = hmin;
+  s[DIAG_FLOW_SPEED * TILE_CELLS + lid] = flow;
+  s[DIAG_WAVE_WET * TILE_CELLS + lid] = wave_wet;
   s_wet[lid] = wet;
-  reduce_tile(s, s_wet, 5, lid, get_group_id(0), p->tiles_x * p->tiles_y, partial, tile_wet,
+  reduce_tile(s, s_wet, DIAG_SINGLE_ROWS, lid, get_group_id(0), p->tiles_x * p->tiles_y, partial, tile_wet,
               tile_list[get_group_id(0)]);
 }
 

@@ -7,7 +7,9 @@
 //   talus render MAP.tif -o MAP.png [--hillshade DEM] [--ramp NAME] [--range LO HI] [--label TEXT]
 //                [--threshold T] [--scale N]
 // Exit status: 0 success, 1 usage or unexpected error, 2 bad input, 3 compute device error,
-// 4 simulation became unstable (outputs so far are kept).
+// 4 simulation became unstable (outputs so far are kept), 5 outputs could not be written (full disk,
+// permissions, quota: the system's reason is printed, summary.json says "failed" where it could be
+// written).
 #include <unistd.h>
 
 #include <cstdio>
@@ -161,6 +163,9 @@ int main(int argc, char** argv) {
   } catch (const talus::ComputeError& e) {
     std::fprintf(stderr, "\ntalus: device error: %s\n", e.what());
     return 3;
+  } catch (const talus::IoError& e) {
+    std::fprintf(stderr, "\ntalus: I/O error: %s\n", e.what());
+    return 5;
   } catch (const talus::SimulationError& e) {
     std::fprintf(stderr,
                  "\ntalus: %s\ntalus: the maps and diagnostics written so far are kept; with a checkpoint the run "

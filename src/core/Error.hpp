@@ -17,6 +17,13 @@ class ComputeError : public std::runtime_error {
   explicit ComputeError(const std::string& what) : std::runtime_error(what) {}
 };
 
+/// An error of the file system while writing outputs (full disk, no permission, quota, a file size
+/// limit), with the system's reason. Exit status 5: the input was fine, the machine was not.
+class IoError : public std::runtime_error {
+ public:
+  explicit IoError(const std::string& what) : std::runtime_error(what) {}
+};
+
 /// A simulation that became unphysical (NaN, negative thickness, runaway). Exit status 4.
 class SimulationError : public std::runtime_error {
  public:

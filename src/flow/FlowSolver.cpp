@@ -13,7 +13,7 @@
 namespace talus::flow {
 namespace {
 
-constexpr int kDiagnosticRows = 9;     // see kernels/flow/diagnostics.cl (5 single-phase, 9 two-phase)
+constexpr int kDiagnosticRows = 11;    // see kernels/flow/diagnostics.cl (7 single-phase, 11 two-phase)
 const compute::Range kLocal2D{kTile, kTile};
 
 std::string buildOptions(const FlowSettings& s) {
@@ -211,7 +211,8 @@ void FlowSolver::computeDiagnostics() {
   const std::size_t ntiles = static_cast<std::size_t>(tilesX_) * tilesY_;
   using compute::ReduceOp;
   if (activeTiles_ > 0) {
-    std::vector<ReduceOp> ops = {ReduceOp::Max, ReduceOp::Sum, ReduceOp::Sum, ReduceOp::Sum, ReduceOp::Min};
+    std::vector<ReduceOp> ops = {ReduceOp::Max, ReduceOp::Sum, ReduceOp::Sum, ReduceOp::Sum,
+                                 ReduceOp::Min, ReduceOp::Max, ReduceOp::Max};
     if (settings_.twoPhase) {
       enqueueDebrisDiagnostics();
       for (int r = 0; r < 4; ++r) ops.push_back(ReduceOp::Sum);
@@ -221,7 +222,8 @@ void FlowSolver::computeDiagnostics() {
     }
     const std::vector<double> r = reducer_.reduceRows(partial_, static_cast<std::size_t>(activeTiles_), ops, ntiles);
     const bool tp = settings_.twoPhase;
-    diag_ = {r[0], r[1], r[2], r[3], r[4], tp ? r[5] : 0.0, tp ? r[6] : 0.0, tp ? r[7] : 0.0, tp ? r[8] : 0.0};
+    diag_ = {r[0], r[1], r[2], r[3], r[4], tp ? r[7] : 0.0, tp ? r[8] : 0.0, tp ? r[9] : 0.0, tp ? r[10] : 0.0,
+             r[5], r[6]};
   } else {
     diag_ = {};
   }

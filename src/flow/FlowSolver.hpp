@@ -47,6 +47,8 @@ struct FlowDiagnostics {
   double outflowSolid = 0;  ///< two-phase: solid volume out in the last step [m^3]
   double potential = 0;     ///< two-phase: g sum m z_centroid over both phases [J]
   double kineticVertical = 0;  ///< two-phase: sum m (u.grad b)^2 / 2, the vertical motion along the bed [J]
+  double maxFlowSpeed = 0;     ///< max material speed |u| (either phase) of layers above Minimum Flow Height [m/s]
+  double maxWaveSpeedWet = 0;  ///< maxSpeed over cells with a layer above Minimum Flow Height [m/s]
 };
 
 /// Running maxima of the two-phase model (spec §8).

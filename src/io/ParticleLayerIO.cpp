@@ -100,14 +100,14 @@ void writeGeoPackage(const std::string& tmpPath, const std::string& path, const 
   srs.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);  // x = easting, y = northing
 
   GDALDatasetUniquePtr ds(driver->Create(tmpPath.c_str(), 0, 0, 0, GDT_Unknown, nullptr));
-  if (!ds) throw InputError(what + errors.describe("GDAL could not create the GeoPackage"));
+  if (!ds) throw IoError(what + errors.describe("GDAL could not create the GeoPackage"));
 
   CPLStringList layerOptions;
   layerOptions.SetNameValue("FID", "fid");
   layerOptions.SetNameValue("GEOMETRY_NAME", "geom");
   layerOptions.SetNameValue("SPATIAL_INDEX", options.spatialIndex ? "YES" : "NO");
   OGRLayer* layer = ds->CreateLayer(layerName.c_str(), &srs, wkbPoint, layerOptions.List());
-  if (layer == nullptr) throw InputError(what + errors.describe("GDAL could not create the layer"));
+  if (layer == nullptr) throw IoError(what + errors.describe("GDAL could not create the layer"));
   for (const ParticleAttribute& a : records.attributes) {
     OGRFieldDefn field(a.name.c_str(), OFTReal);
     if (layer->CreateField(&field) != OGRERR_NONE)
@@ -124,7 +124,7 @@ void writeGeoPackage(const std::string& tmpPath, const std::string& path, const 
   }
 
   if (ds->StartTransaction() != OGRERR_NONE)
-    throw InputError(what + errors.describe("GDAL could not start a transaction"));
+    throw IoError(what + errors.describe("GDAL could not start a transaction"));
   OGRFeature feature(layer->GetLayerDefn());
   OGRPoint point;
   const std::size_t n = records.size();
@@ -147,14 +147,14 @@ void writeGeoPackage(const std::string& tmpPath, const std::string& path, const 
     }
     if (layer->CreateFeature(&feature) != OGRERR_NONE) {
       ds->RollbackTransaction();
-      throw InputError(what + "cannot write particle " + std::to_string(k) + ": " +
+      throw IoError(what + "cannot write particle " + std::to_string(k) + ": " +
                        errors.describe("GDAL CreateFeature failed"));
     }
   }
   if (ds->CommitTransaction() != OGRERR_NONE)
-    throw InputError(what + errors.describe("GDAL could not commit the transaction"));
+    throw IoError(what + errors.describe("GDAL could not commit the transaction"));
   ds.reset();  // GDALClose: finishes the GeoPackage metadata and closes the database
-  if (errors.failed()) throw InputError(what + errors.describe("GDAL write failed"));
+  if (errors.failed()) throw IoError(what + errors.describe("GDAL write failed"));
 }
 
 }  // namespace
@@ -178,7 +178,7 @@ void writeParticleLayer(const std::string& path, const Grid& grid, const Particl
   try {
     writeGeoPackage(tmpPath, path, grid, records, options, errors);
     fs::rename(tmpPath, path, ec);
-    if (ec) throw InputError("cannot move '" + tmpPath + "' to '" + path + "': " + ec.message());
+    if (ec) throw IoError("cannot move '" + tmpPath + "' to '" + path + "': " + ec.message());
   } catch (...) {
     removeWithSideFiles(tmpPath);
     throw;

@@ -71,17 +71,17 @@ void fillDataset(GDALDataset& ds, const Raster& r, const std::string& path) {
   GDALRasterBand* band = ds.GetRasterBand(1);
   if (band->RasterIO(GF_Write, 0, 0, r.grid.nx, r.grid.ny, data.data(), r.grid.nx, r.grid.ny,
                      GDT_Float64, 0, 0, nullptr) != CE_None) {
-    throw InputError("cannot write raster '" + path + "': " + CPLGetLastErrorMsg());
+    throw IoError("cannot write raster '" + path + "': " + CPLGetLastErrorMsg());
   }
   std::array<double, 6> gt = r.grid.geoTransform;
   if (ds.SetGeoTransform(gt.data()) != CE_None) {
-    throw InputError("cannot set the georeference of '" + path + "': " + CPLGetLastErrorMsg());
+    throw IoError("cannot set the georeference of '" + path + "': " + CPLGetLastErrorMsg());
   }
   if (!r.grid.projectionWkt.empty() && ds.SetProjection(r.grid.projectionWkt.c_str()) != CE_None) {
-    throw InputError("cannot set the projection of '" + path + "': " + CPLGetLastErrorMsg());
+    throw IoError("cannot set the projection of '" + path + "': " + CPLGetLastErrorMsg());
   }
   if (band->SetNoDataValue(r.nodata) != CE_None) {
-    throw InputError("cannot set the nodata value of '" + path + "': " + CPLGetLastErrorMsg());
+    throw IoError("cannot set the nodata value of '" + path + "': " + CPLGetLastErrorMsg());
   }
 }
 
@@ -106,7 +106,7 @@ void writeWithGdal(const std::string& tmpPath, const std::string& path, const Ra
     GDALDatasetUniquePtr ds(gtiff->Create(tmpPath.c_str(), g.nx, g.ny, 1,
                                           asFloat64 ? GDT_Float64 : GDT_Float32, options.List()));
     if (!ds) {
-      throw InputError("cannot create raster '" + path + "': " + errors.describe("GDAL Create failed"));
+      throw IoError("cannot create raster '" + path + "': " + errors.describe("GDAL Create failed"));
     }
     fillDataset(*ds, r, path);
     ds.reset();  // GDALClose: flushes and compresses the last tiles
@@ -116,7 +116,7 @@ void writeWithGdal(const std::string& tmpPath, const std::string& path, const Ra
     GDALDriver* pcraster = driverOrThrow("PCRaster", path);
     GDALDatasetUniquePtr src(mem->Create("", g.nx, g.ny, 1, GDT_Float32, nullptr));
     if (!src) {
-      throw InputError("cannot build raster '" + path + "' in memory: " +
+      throw IoError("cannot build raster '" + path + "' in memory: " +
                        errors.describe("GDAL MEM Create failed"));
     }
     fillDataset(*src, r, path);
@@ -125,13 +125,13 @@ void writeWithGdal(const std::string& tmpPath, const std::string& path, const Ra
     GDALDatasetUniquePtr ds(
         pcraster->CreateCopy(tmpPath.c_str(), src.get(), FALSE, options.List(), nullptr, nullptr));
     if (!ds) {
-      throw InputError("cannot create raster '" + path + "': " +
+      throw IoError("cannot create raster '" + path + "': " +
                        errors.describe("GDAL PCRaster CreateCopy failed"));
     }
     ds.reset();
   }
   if (errors.failed()) {
-    throw InputError("cannot write raster '" + path + "': " + errors.describe("GDAL write failed"));
+    throw IoError("cannot write raster '" + path + "': " + errors.describe("GDAL write failed"));
   }
 }
 
@@ -291,7 +291,7 @@ void writeRaster(const std::string& path, const Raster& r, RasterFormat format, 
   if (folder.empty()) folder = ".";
   std::error_code ec;
   if (!fs::is_directory(folder, ec)) {
-    throw InputError("cannot write raster '" + path + "': folder '" + folder.string() +
+    throw IoError("cannot write raster '" + path + "': folder '" + folder.string() +
                      "' does not exist or is not a folder");
   }
 
@@ -301,12 +301,12 @@ void writeRaster(const std::string& path, const Raster& r, RasterFormat format, 
   try {
     writeWithGdal(tmpPath, path, r, format, asFloat64, errors);
     fs::rename(tmpPath, path, ec);
-    if (ec) throw InputError("cannot move '" + tmpPath + "' to '" + path + "': " + ec.message());
+    if (ec) throw IoError("cannot move '" + tmpPath + "' to '" + path + "': " + ec.message());
     // Side-car metadata GDAL may keep next to the file (e.g. the projection of a PCRaster map).
     const std::string aux = path + ".aux.xml";
     if (fs::exists(tmpAux, ec)) {
       fs::rename(tmpAux, aux, ec);
-      if (ec) throw InputError("cannot move '" + tmpAux + "' to '" + aux + "': " + ec.message());
+      if (ec) throw IoError("cannot move '" + tmpAux + "' to '" + aux + "': " + ec.message());
     } else {
       removeQuietly(aux);  // a stale side-car would describe the old file
     }

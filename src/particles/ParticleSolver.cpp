@@ -408,7 +408,7 @@ void ParticleSolver::restoreState(const std::vector<char>& bytes) {
   updateDiagnostics();
 }
 
-void ParticleSolver::subStep(double ds) {
+bool ParticleSolver::sortAndEvaluateStress(double ds) {
   NeighbourGrid& ng = *neighbours_;
   ng.build(x_, y_, count_);
   reorderAll();
@@ -417,13 +417,20 @@ void ParticleSolver::subStep(double ds) {
     count_ = inside;  // removed particles (NaN positions) sorted behind the live ones
     writeParams();
   }
-  if (count_ == 0) return;
+  if (count_ == 0) return false;
   const compute::Range global{count_};
   density_.bind(params_, ng.params(), ng.cellStart(), ng.cellEnd(), x_, y_, V_, A_, rho_, rhoA_, H_);
   density_.launch(global, kParticleGroup, "particle_density");
   stress_.bind(params_, ng.params(), ng.cellStart(), ng.cellEnd(), x_, y_, vx_, vy_, A_, H_, rho_, gn_, phi_, delta_, sxx_,
                syy_, sxy_, coh_, coh0_, plastic_, Nxx_, Nyy_, Nxy_, Minv_, div_, compute::RealArg{ds});
   stress_.launch(global, kParticleGroup, "particle_stress");
+  return true;
+}
+
+void ParticleSolver::subStep(double ds) {
+  if (!sortAndEvaluateStress(ds)) return;
+  NeighbourGrid& ng = *neighbours_;
+  const compute::Range global{count_};
   forces_.bind(params_, ng.params(), ng.cellStart(), ng.cellEnd(), x_, y_, vx_, vy_, m_, A_, rhoA_, Nxx_, Nyy_, Nxy_, Minv_,
                ax_, ay_);
   forces_.launch(global, kParticleGroup, "particle_forces");
@@ -431,6 +438,13 @@ void ParticleSolver::subStep(double ds) {
                   Vf0_, coh_, coh0_, released_, fluidDepth_, outMass_, compute::RealArg{ds});
   integrate_.launch(global, kParticleGroup, "particle_integrate");
   diag_.outflowMass += reducer_.sum(outMass_, count_);
+}
+
+void ParticleSolver::computeDerivedFields() {
+  // A stress update over zero time leaves the stress, cohesion and plastic strain as they are
+  // (constitutive.cl: the trial stress is the current one) and evaluates N and the divergence.
+  if (count_ > 0) sortAndEvaluateStress(0.0);
+  updateDiagnostics();
 }
 
 void ParticleSolver::updateDiagnostics() {

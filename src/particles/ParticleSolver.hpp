@@ -83,6 +83,10 @@ class ParticleSolver {
   double stableSubStep();
   /// Advances by dt in ceil(dt / stableSubStep()) equal sub-steps (re-evaluated each sub-step).
   void step(double dt);
+  /// Evaluates the fields a step derives from the state (thickness, areal density, depth-integrated
+  /// stress, divergence) for the current state without advancing it, so that a layer written
+  /// before the first step (t = start) holds defined values. Re-sorts the particles.
+  void computeDerivedFields();
 
   const ParticleDiagnostics& diagnostics() const { return diag_; }
   ParticleState state() const;
@@ -126,6 +130,9 @@ class ParticleSolver {
 
  private:
   void subStep(double dt);
+  /// The first half of a sub-step: neighbour sort, thickness and stress over ds (0: evaluation only).
+  /// False when no particle is left.
+  bool sortAndEvaluateStress(double ds);
   void writeParams();
   void reorderAll();
   void updateDiagnostics();

@@ -1,12 +1,11 @@
 #include "sim/Checkpoint.hpp"
 
 #include <cstring>
-#include <filesystem>
 #include <fstream>
-
-#include <unistd.h>
+#include <sstream>
 
 #include "core/Error.hpp"
+#include "core/FileWrite.hpp"
 
 namespace talus::sim {
 namespace {
@@ -16,10 +15,10 @@ constexpr char kMagic[8] = {'T', 'A', 'L', 'U', 'S', 'C', 'K', '2'};
 constexpr char kMagicV1[8] = {'T', 'A', 'L', 'U', 'S', 'C', 'K', '1'};
 
 template <class T>
-void put(std::ofstream& o, const T& v) {
+void put(std::ostream& o, const T& v) {
   o.write(reinterpret_cast<const char*>(&v), sizeof v);
 }
-void putString(std::ofstream& o, const std::string& s) {
+void putString(std::ostream& o, const std::string& s) {
   put<uint64_t>(o, s.size());
   o.write(s.data(), static_cast<std::streamsize>(s.size()));
 }
@@ -46,37 +45,22 @@ struct Reader {
 }  // namespace
 
 void writeCheckpoint(const std::string& path, const Checkpoint& c) {
-  const std::string tmp = path + ".tmp-" + std::to_string(::getpid());
-  {
-    std::ofstream o(tmp, std::ios::binary | std::ios::trunc);
-    if (!o) throw InputError("cannot write checkpoint '" + tmp + "'");
-    o.write(kMagic, sizeof kMagic);
-    putString(o, c.precision);
-    put(o, c.nx);
-    put(o, c.ny);
-    put(o, c.time);
-    put(o, c.steps);
-    put(o, c.reportIndex);
-    put(o, c.initialVolume);
-    put(o, c.totalOutflow);
-    put(o, c.elapsedWall);
-    putString(o, c.seriesIndex);
-    putString(o, std::string(c.state.begin(), c.state.end()));
-    putString(o, std::string(c.particleState.begin(), c.particleState.end()));
-    o.write(kMagic, sizeof kMagic);  // trailer: a complete file ends with the magic again
-    o.flush();
-    if (!o) {
-      std::error_code ec;
-      std::filesystem::remove(tmp, ec);
-      throw InputError("cannot write checkpoint '" + tmp + "'");
-    }
-  }
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) {
-    std::filesystem::remove(tmp, ec);
-    throw InputError("cannot write checkpoint '" + path + "': " + ec.message());
-  }
+  std::ostringstream o(std::ios::binary);
+  o.write(kMagic, sizeof kMagic);
+  putString(o, c.precision);
+  put(o, c.nx);
+  put(o, c.ny);
+  put(o, c.time);
+  put(o, c.steps);
+  put(o, c.reportIndex);
+  put(o, c.initialVolume);
+  put(o, c.totalOutflow);
+  put(o, c.elapsedWall);
+  putString(o, c.seriesIndex);
+  putString(o, std::string(c.state.begin(), c.state.end()));
+  putString(o, std::string(c.particleState.begin(), c.particleState.end()));
+  o.write(kMagic, sizeof kMagic);  // trailer: a complete file ends with the magic again
+  writeFileAtomically(path, o.str());  // the previous checkpoint stays until this one is complete
 }
 
 Checkpoint readCheckpoint(const std::string& path) {

@@ -16,20 +16,42 @@ std::string where(const Grid& g, std::size_t k) {
   return o.str();
 }
 
+/// The largest earth-pressure coefficient the two-phase model can give any cell of the scene: the
+/// constant K, or Savage and Hutter's passive coefficient (kernels/flow/debris_closures.cl) at the
+/// cell's internal and bed friction angles.
+double largestEarthPressure(const flow::FlowInput& in, const flow::FlowSettings& s) {
+  if (!s.twoPhase) return 1.0;
+  if (s.debris.earthPressure == flow::EarthPressure::Constant) return std::max(1.0, s.debris.kConst);
+  double kmax = 1.0;
+  for (std::size_t k = 0; k < in.phi.size(); ++k) {
+    if (!in.mask[k]) continue;
+    const double phi = in.phi[k];
+    const double delta = s.debris.deltaFromPhi || in.delta.size() <= k ? phi : in.delta[k];
+    const double cp = std::cos(phi), cd = std::cos(delta);
+    const double root = std::sqrt(std::max(0.0, 1.0 - cp * cp / (cd * cd)));
+    if (cp > 0) kmax = std::max(kmax, 2.0 / (cp * cp) * (1.0 + root) - 1.0);
+  }
+  return kmax;
+}
+
 }  // namespace
 
-HealthCheck::HealthCheck(const Raster& dem, const flow::FlowInput& in, double cfl) : grid_(dem.grid), cfl_(cfl) {
-  double zmin = HUGE_VAL, zmax = -HUGE_VAL, v0 = 0;
+HealthCheck::HealthCheck(const Raster& dem, const flow::FlowInput& in, const flow::FlowSettings& settings)
+    : grid_(dem.grid), cfl_(settings.cfl), hDry_(settings.hDry) {
+  double zmin = HUGE_VAL, zmax = -HUGE_VAL, hmax = 0, v0 = 0;
   for (std::size_t k = 0; k < in.bed.size(); ++k) {
     if (!in.mask[k]) continue;
+    const double hs = in.hs.empty() ? 0.0 : std::max(0.0, in.hs[k]);
+    const double column = std::max(0.0, in.h[k]) + hs;
     zmin = std::min(zmin, in.bed[k]);
-    zmax = std::max(zmax, in.bed[k] + in.h[k] + (in.hs.empty() ? 0.0 : in.hs[k]));
-    if (in.h[k] > 0 && !in.qx.empty())
-      v0 = std::max(v0, (std::fabs(in.qx[k]) + std::fabs(in.qy[k])) / in.h[k]);
+    zmax = std::max(zmax, in.bed[k] + column);
+    hmax = std::max(hmax, column);
+    if (in.h[k] > hDry_ && !in.qx.empty()) v0 = std::max(v0, std::hypot(in.qx[k], in.qy[k]) / in.h[k]);
+    if (hs > hDry_ && !in.qsx.empty()) v0 = std::max(v0, std::hypot(in.qsx[k], in.qsy[k]) / hs);
   }
-  // The largest fall any water can make: from the highest surface to the lowest bed.
-  const double drop = std::max(0.0, zmax - zmin);
-  speedLimit_ = 2.0 * std::sqrt(2.0) * std::sqrt(2.0 * kGravity * drop) + 2.0 * std::sqrt(kGravity * drop) + 2.0 * v0;
+  const double drop = zmax > zmin ? zmax - zmin : 0.0;
+  const double kmax = largestEarthPressure(in, settings);
+  speedBound_ = std::sqrt(2.0 * kGravity * drop) + 2.0 * std::sqrt(kGravity * kmax * hmax) + v0;
 }
 
 std::string HealthCheck::locate(const flow::FlowSolver& solver, const char* what) const {
@@ -46,7 +68,8 @@ std::string HealthCheck::locate(const flow::FlowSolver& solver, const char* what
   double worstValue = -HUGE_VAL;
   auto consider = [&](const std::vector<double>& hh, const std::vector<double>& ax, const std::vector<double>& ay,
                       bool solid, std::size_t k) {
-    const double score = negative ? -hh[k] : hh[k] > 0 ? std::hypot(ax[k], ay[k]) / hh[k] : 0.0;
+    // Films at or below the dry threshold carry no velocity: the fastest flow is a thicker layer.
+    const double score = negative ? -hh[k] : hh[k] > hDry_ ? std::hypot(ax[k], ay[k]) / hh[k] : 0.0;
     if (score > worstValue) worstValue = score, worst = k, worstSolid = solid;
   };
   for (std::size_t k = 0; k < h.size(); ++k) {
@@ -74,18 +97,22 @@ std::string HealthCheck::check(const flow::FlowSolver& solver, double dt) const 
   if (!std::isfinite(d.volume) || !std::isfinite(d.maxSpeed) || !std::isfinite(d.kinetic))
     return locate(solver, "NaN or infinity");
   if (d.minH < 0) return locate(solver, "negative thickness");
-  if (d.maxSpeed > speedLimit_) {
+  // Energy: the material speed (not a wave speed, which earth pressure or viscosity may make large
+  // in a slow flow) against the bound the scene's relief and release allow.
+  if (d.maxFlowSpeed > speedBound_) {
     std::ostringstream o;
-    o << "runaway velocity: wave speed " << d.maxSpeed << " m/s exceeds the energy bound " << speedLimit_ << " m/s; ";
+    o << "runaway velocity: flow speed " << d.maxFlowSpeed << " m/s exceeds " << speedBound_
+      << " m/s, the fastest the scene's relief and release can drive (energy bound); ";
     return o.str() + locate(solver, "fastest flow");
   }
-  // The step was taken with dt <= cfl dx / a_old; if the state it produced needs a wave speed for
-  // which that dt exceeds the absolute stability limit (CFL 1), the step was not stable.
-  const double courant = dt * d.maxSpeed / solver.grid().dx;
+  // Stability: the step was taken with dt <= cfl dx / a_old. If the state it produced needs a wave
+  // speed for which that dt exceeds the absolute stability limit (Courant number 1), the step was
+  // not stable. Films at or below Minimum Flow Height carry no velocity and are left out.
+  const double courant = dt * d.maxWaveSpeedWet / solver.grid().dx;
   if (courant > 1.0 && courant > 2.0 * cfl_) {
     std::ostringstream o;
     o << "CFL violation: the step of " << dt << " s reached Courant number " << courant
-      << " (limit 1): the wave speed jumped to " << d.maxSpeed << " m/s within one step; ";
+      << " (limit 1): the wave speed jumped to " << d.maxWaveSpeedWet << " m/s within one step; ";
     return o.str() + locate(solver, "fastest flow");
   }
   return "";

@@ -1,44 +1,132 @@
 #include "sim/OutputWriter.hpp"
 
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
-
-#include <unistd.h>
 
 #include "core/Error.hpp"
 
 namespace talus::sim {
 namespace fs = std::filesystem;
+namespace {
+
+constexpr const char* kLock = ".talus-lock";
+constexpr const char* kManifest = ".talus-outputs";
+// The files every run writes under fixed names: removed by --overwrite also after a run whose
+// version kept no manifest.
+constexpr const char* kFixedOutputs[] = {"summary.json", "diagnostics.csv", "checkpoint.bin", "run.resolved.run",
+                                         "series/index.csv"};
+
+/// A manifest entry names a file inside the folder: relative, without "..".
+bool insideFolder(const std::string& name) {
+  if (name.empty() || name[0] == '/') return false;
+  for (const auto& part : fs::path(name))
+    if (part == "..") return false;
+  return true;
+}
+
+std::string readSmallFile(const std::string& path, std::size_t limit) {
+  std::ifstream in(path, std::ios::binary);
+  std::string s(limit, '\0');
+  in.read(&s[0], static_cast<std::streamsize>(limit));
+  s.resize(static_cast<std::size_t>(in.gcount()));
+  return s;
+}
+
+}  // namespace
 
 OutputWriter::OutputWriter(const std::string& dir, const Raster& dem, io::RasterFormat format, bool overwrite,
                            bool resume)
-    : dir_(fs::absolute(dir).lexically_normal().string()), dem_(dem), format_(format) {
+    : dir_(fs::absolute(dir).lexically_normal().string()), dem_(dem), format_(format), resume_(resume) {
   std::error_code ec;
   if (fs::exists(dir_, ec) && !fs::is_directory(dir_, ec))
     throw InputError("output folder '" + dir_ + "' exists and is not a folder");
-  if (resume) {
-    if (!fs::exists(dir_ + "/checkpoint.bin", ec))
-      throw InputError("cannot resume: '" + dir_ + "' holds no checkpoint.bin");
-    fs::remove(dir_ + "/summary.json", ec);
+  if (resume && !fs::exists(dir_ + "/checkpoint.bin", ec))
+    throw InputError("cannot resume: '" + dir_ + "' holds no checkpoint.bin");
+  fs::create_directories(dir_, ec);
+  if (ec) throw InputError("cannot create output folder '" + dir_ + "': " + ec.message());
+  if (::access(dir_.c_str(), W_OK) != 0) throw InputError("output folder '" + dir_ + "' is not writable");
+  // One run per folder. flock() belongs to the open file: it ends with the process however the
+  // process ends (kill -9 included), so no stale lock can block the folder.
+  const std::string lockPath = path(kLock);
+  lockFd_ = ::open(lockPath.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  if (lockFd_ < 0) throw InputError("cannot lock output folder '" + dir_ + "': " + std::strerror(errno));
+  if (::flock(lockFd_, LOCK_EX | LOCK_NB) != 0) {
+    const int err = errno;
+    std::string holder = readSmallFile(lockPath, 32);
+    while (!holder.empty() && (holder.back() == '\n' || holder.back() == ' ')) holder.pop_back();
+    ::close(lockFd_);
+    lockFd_ = -1;
+    if (err == EWOULDBLOCK)
+      throw InputError("output folder '" + dir_ + "' is in use by another Talus run" +
+                       (holder.empty() ? std::string() : " (process " + holder + ")") +
+                       "; wait for it to end or choose another folder");
+    throw InputError("cannot lock output folder '" + dir_ + "': " + std::strerror(err));
+  }
+  const std::string pid = std::to_string(::getpid()) + "\n";
+  if (::ftruncate(lockFd_, 0) != 0 || ::write(lockFd_, pid.data(), pid.size()) < 0) {
+    // The pid is only for the message a second run prints; the lock itself holds.
+  }
+  const bool holdsRun = fs::exists(path("summary.json"), ec) || fs::exists(path("diagnostics.csv"), ec) ||
+                        fs::exists(path(kManifest), ec);
+  if (!overwrite && !resume && holdsRun)
+    throw InputError("output folder '" + dir_ + "' already holds a run; choose another folder or pass --overwrite");
+}
+
+OutputWriter::~OutputWriter() {
+  try {
+    csv_.close();
+    manifest_.close();
+  } catch (const std::exception&) {
+    // A failed close of the CSV or manifest at teardown was already reported by the write that
+    // failed, or the run is being abandoned: nothing more to say.
+  }
+  if (lockFd_ >= 0) ::close(lockFd_);  // releases the lock
+}
+
+void OutputWriter::removePreviousRun() {
+  std::error_code ec;
+  std::istringstream manifest(readSmallFile(path(kManifest), std::size_t{64} << 20));
+  std::string name;
+  while (std::getline(manifest, name))
+    if (insideFolder(name)) fs::remove(path(name), ec);
+  for (const char* fixed : kFixedOutputs) fs::remove(path(fixed), ec);
+  fs::remove(path(kManifest), ec);
+  // Folders the previous run made, once empty (a user's own files in them stay).
+  for (const char* sub : {"series", "particles"}) {
+    if (fs::is_directory(path(sub), ec) && fs::is_empty(path(sub), ec)) fs::remove(path(sub), ec);
+  }
+}
+
+void OutputWriter::prepare() {
+  std::error_code ec;
+  if (resume_) {
+    fs::remove(path("summary.json"), ec);
     // Temporary files of writes a kill interrupted (the finished files they would have replaced
     // are intact: every write is a rename).
     for (const auto& e : fs::recursive_directory_iterator(dir_, ec))
       if (e.path().filename().string().find(".tmp-") != std::string::npos) fs::remove(e.path(), ec);
+    std::istringstream manifest(readSmallFile(path(kManifest), std::size_t{64} << 20));
+    std::string name;
+    while (std::getline(manifest, name)) claimed_.insert(name);
+    manifest_.open(path(kManifest), false);
     return;
   }
-  if (!overwrite && (fs::exists(dir_ + "/summary.json", ec) || fs::exists(dir_ + "/diagnostics.csv", ec)))
-    throw InputError("output folder '" + dir_ + "' already holds a run; choose another folder or pass --overwrite");
-  fs::create_directories(dir_ + "/series", ec);
-  if (ec) throw InputError("cannot create output folder '" + dir_ + "': " + ec.message());
-  if (::access(dir_.c_str(), W_OK) != 0) throw InputError("output folder '" + dir_ + "' is not writable");
-  fs::remove(dir_ + "/diagnostics.csv", ec);
-  fs::remove(dir_ + "/summary.json", ec);
-  fs::remove(dir_ + "/checkpoint.bin", ec);
+  removePreviousRun();
+  fs::create_directories(path("series"), ec);
+  if (ec) throw IoError("cannot create folder '" + path("series") + "': " + ec.message());
+  manifest_.open(path(kManifest), true);
 }
 
-OutputWriter::~OutputWriter() {
-  if (csv_) std::fclose(csv_);
+std::string OutputWriter::claim(const std::string& name) {
+  if (claimed_.insert(name).second) manifest_.appendLine(name);
+  return path(name);
 }
 
 void OutputWriter::writeMap(const std::string& name, const std::vector<double>& values, const double* nodataValue) {
@@ -50,26 +138,14 @@ void OutputWriter::writeMap(const std::string& name, const std::vector<double>& 
     for (std::size_t k = 0; k < values.size(); ++k)
       if (values[k] == *nodataValue) r.valid[k] = 0;
   const char* ext = format_ == io::RasterFormat::PCRaster ? ".map" : ".tif";
-  io::writeRaster(path(name + ext), r, format_);
+  io::writeRaster(claim(name + ext), r, format_);
 }
 
 void OutputWriter::writeText(const std::string& name, const std::string& content) {
-  const std::string target = path(name);
-  const std::string tmp = target + ".tmp-" + std::to_string(::getpid());
-  {
-    std::ofstream out(tmp, std::ios::binary);
-    out << content;
-    if (!out) throw InputError("cannot write '" + tmp + "'");
-  }
-  std::error_code ec;
-  fs::rename(tmp, target, ec);
-  if (ec) {
-    fs::remove(tmp, ec);
-    throw InputError("cannot write '" + target + "'");
-  }
+  writeFileAtomically(claim(name), content);
 }
 
-void OutputWriter::truncateDiagnostics(const std::string& header, long long rows) {
+std::string OutputWriter::keptDiagnostics(const std::string& header, long long rows) const {
   std::ifstream in(path("diagnostics.csv"), std::ios::binary);
   std::ostringstream all;
   all << in.rdbuf();
@@ -88,19 +164,22 @@ void OutputWriter::truncateDiagnostics(const std::string& header, long long rows
   if (lines < rows)
     throw InputError("cannot resume: '" + path("diagnostics.csv") + "' has " + std::to_string(lines) +
                      " complete rows, the checkpoint needs " + std::to_string(rows));
-  writeText("diagnostics.csv", kept);
-  csv_ = std::fopen(path("diagnostics.csv").c_str(), "a");
-  if (!csv_) throw InputError("cannot write '" + path("diagnostics.csv") + "'");
+  return kept;
+}
+
+void OutputWriter::checkDiagnostics(const std::string& header, long long rows) const { keptDiagnostics(header, rows); }
+
+void OutputWriter::truncateDiagnostics(const std::string& header, long long rows) {
+  writeText("diagnostics.csv", keptDiagnostics(header, rows));
+  csv_.open(path("diagnostics.csv"), false);
 }
 
 void OutputWriter::appendDiagnostics(const std::string& header, const std::string& line) {
-  if (!csv_) {
-    csv_ = std::fopen(path("diagnostics.csv").c_str(), "w");
-    if (!csv_) throw InputError("cannot write '" + path("diagnostics.csv") + "'");
-    std::fprintf(csv_, "%s\n", header.c_str());
+  if (!csv_.isOpen()) {
+    csv_.open(claim("diagnostics.csv"), true);
+    csv_.appendLine(header);
   }
-  std::fprintf(csv_, "%s\n", line.c_str());
-  std::fflush(csv_);
+  csv_.appendLine(line);
 }
 
 }  // namespace talus::sim

@@ -17,6 +17,7 @@ ParticleRun::ParticleRun(compute::Context& ctx, const Raster& dem, const Particl
   solver_ = std::make_unique<particles::ParticleSolver>(ctx, dem.grid, scene.terrain, scene.settings);
   solver_->setParticles(scene.seeded, scene.material);
   solver_->setFluidCoupling(scene.fluid, scene.grain);
+  solver_->computeDerivedFields();  // the layer at the start time is written before any step
   fluidDensity_ = scene.settings.fluidDensity;
   initialMass_ = solver_->diagnostics().mass;
   // The grid sees the particles from its first step on (a zero-length exchange changes nothing).

@@ -49,9 +49,9 @@ Simulation::Simulation(const Scene& scene, const io::RunConfig& config, const st
     const double area = scene.dem.grid.dx * scene.dem.grid.dx;
     for (std::size_t q = 0; q < scene.particles.seeded.size(); ++q)
       bound.h[scene.particles.seeded.cell[q]] += scene.particles.seeded.volume[q] / area;
-    health_ = std::make_unique<HealthCheck>(scene.dem, bound, scene.settings.cfl);
+    health_ = std::make_unique<HealthCheck>(scene.dem, bound, scene.settings);
   } else {
-    health_ = std::make_unique<HealthCheck>(scene.dem, scene.flow, scene.settings.cfl);
+    health_ = std::make_unique<HealthCheck>(scene.dem, scene.flow, scene.settings);
   }
   for (uint8_t v : scene.dem.valid) domainCells_ += v;
   initialVolume_ = totalVolume(solver_->diagnostics());
@@ -65,9 +65,14 @@ Simulation::Simulation(const Scene& scene, const io::RunConfig& config, const st
   if (scene.particles.enabled && !scene.particles.seeded.x.empty())
     particles_ = std::make_unique<ParticleRun>(*ctx_, scene.dem, scene.particles, *solver_);
   if (mode != OutputMode::Resume) {
+    // Everything is in place: only now is the previous run's folder content replaced.
+    out_->prepare();
     out_->writeText("run.resolved.run", config.echo());
     return;
   }
+  // Resuming: every check comes before anything in the folder changes, so a resume that fails
+  // (another precision or grid, a truncated checkpoint, an End Time already passed) leaves the
+  // completed or interrupted run as it was.
   const std::string path = out_->path("checkpoint.bin");
   const Checkpoint c = readCheckpoint(path);
   const Grid& g = scene.dem.grid;
@@ -80,12 +85,17 @@ Simulation::Simulation(const Scene& scene, const io::RunConfig& config, const st
   if (particles_ && c.particleState.empty())
     throw InputError("checkpoint '" + path + "' holds no particles, but this run has particles");
   if (particles_) particles_->restoreState(c.particleState);
+  if (scene.endTime < c.time * (1 - 1e-12) - 1e-12)
+    throw InputError("cannot resume: the End Time of " + std::to_string(scene.endTime) + " s lies before the time of " +
+                     "checkpoint '" + path + "' (" + std::to_string(c.time) + " s); give a later End Time with --set");
+  out_->checkDiagnostics(kCsvHeader, c.steps);
   steps_ = c.steps;
   reportIndex_ = c.reportIndex;
   initialVolume_ = c.initialVolume;
   totalOutflow_ = c.totalOutflow;
   wallBefore_ = c.elapsedWall;
   seriesIndex_ = c.seriesIndex;
+  out_->prepare();
   out_->truncateDiagnostics(kCsvHeader, steps_);
 }
 
@@ -104,7 +114,7 @@ void Simulation::writeReport() {
   if (particles_) {
     char pName[64];
     std::snprintf(pName, sizeof pName, "particles/particles_%04d.gpkg", index);
-    particles_->writeLayer(out_->path(pName));
+    particles_->writeLayer(out_->claim(pName));
   }
   if (solver_->twoPhase()) {
     char sName[64];
@@ -132,7 +142,7 @@ void Simulation::writeCheckpoint(double wallSeconds) {
   c.seriesIndex = seriesIndex_;
   c.state = solver_->saveState();
   if (particles_) c.particleState = particles_->saveState();
-  sim::writeCheckpoint(out_->path("checkpoint.bin"), c);
+  sim::writeCheckpoint(out_->claim("checkpoint.bin"), c);
   ++checkpoints_;
 }
 
@@ -210,16 +220,18 @@ Progress Simulation::stepOnce() {
                 d.volumeSolid, d.outflow, d.outflowSolid, d.potential, d.kineticVertical, released, lost);
   char wallText[32];
   std::snprintf(wallText, sizeof wallText, ",%.4f", wall());  // wall time last: the one column that differs run to run
-  out_->appendDiagnostics(kCsvHeader, std::string(line) + (particles_ ? particles_->csvRow() : "0,0,0,0") + wallText);
+  guardedWrite([&] {
+    out_->appendDiagnostics(kCsvHeader, std::string(line) + (particles_ ? particles_->csvRow() : "0,0,0,0") + wallText);
+  });
   if (solver_->time() >= nextReport_ * (1 - 1e-15)) {
-    writeReport();
+    guardedWrite([&] { writeReport(); });
     nextReport_ = t0 + reportIndex_ * interval;
   }
   const double ckInterval = scene_.checkpointInterval;
   const bool simDue = solver_->time() >= nextCheckpoint_ * (1 - 1e-15);
   const bool wallDue = scene_.checkpointWallInterval > 0 && wall() - lastCheckpointWall_ >= scene_.checkpointWallInterval;
   if ((simDue || wallDue) && solver_->time() < tEnd * (1 - 1e-15)) {
-    writeCheckpoint(wall());
+    guardedWrite([&] { writeCheckpoint(wall()); });
     lastCheckpointWall_ = wall();
   }
   while (solver_->time() >= nextCheckpoint_ * (1 - 1e-15)) nextCheckpoint_ += ckInterval;
@@ -230,6 +242,20 @@ Progress Simulation::stepOnce() {
     atRest_ = true;  // the flow has come to rest: the final maps are those of this state
   }
   return {solver_->time(), t0, tEnd, steps_, wall(), dt, &d, volume, totalOutflow_, balance, allKinetic};
+}
+
+void Simulation::guardedWrite(const std::function<void()>& write) {
+  try {
+    write();
+  } catch (const IoError& e) {
+    // The run cannot keep its record: stop it, and write what can still be written (the maxima so
+    // far and a summary that says "failed" and why), or say that it could not.
+    std::ostringstream o;
+    o << "output failed at t = " << solver_->time() << " s (step " << steps_ << "): " << e.what();
+    failure_ = o.str();
+    finalize(Ending::Failed);  // throws IoError itself when the summary cannot be written either
+    throw IoError(failure_ + "; the maxima so far and summary.json (status \"failed\") are written");
+  }
 }
 
 RunSummary Simulation::finish() {
@@ -254,24 +280,36 @@ RunSummary Simulation::finalize(Ending ending) {
   return s;
 }
 
+void Simulation::attemptWrite(const std::function<void()>& write, std::string& firstError) {
+  try {
+    write();
+  } catch (const IoError& e) {
+    if (firstError.empty()) firstError = e.what();
+  }
+}
+
 void Simulation::writeFinal(const RunSummary& s, Ending ending) {
   const bool failed = ending == Ending::Failed;
+  // Each map is attempted even when one before it failed (a full disk may still take a small
+  // file); the summary then reports the run as failed with the first reason.
+  std::string ioError;
+  auto attempt = [&](const std::function<void()>& write) { attemptWrite(write, ioError); };
   // On failure the maxima and arrival so far are still written; the final state may hold NaN.
   const double never = -1.0;
-  if (!failed) out_->writeMap("hffinal", solver_->h());
-  out_->writeMap("tarrival", solver_->arrival(), &never);
+  if (!failed) attempt([&] { out_->writeMap("hffinal", solver_->h()); });
+  attempt([&] { out_->writeMap("tarrival", solver_->arrival(), &never); });
   if (!solver_->twoPhase()) {
-    out_->writeMap("hfmax", solver_->hMax());
-    out_->writeMap("vfmax", solver_->vMax());
+    attempt([&] { out_->writeMap("hfmax", solver_->hMax()); });
+    attempt([&] { out_->writeMap("vfmax", solver_->vMax()); });
   } else {
     const flow::DebrisMaxima m = solver_->debrisMaxima();
-    out_->writeMap("hfmax", m.hf);
-    out_->writeMap("vfmax", m.vf);
-    out_->writeMap("hsmax", m.hs);
-    out_->writeMap("vsmax", m.vs);
-    out_->writeMap("htmax", m.h);
-    out_->writeMap("sfracmax", m.solidFraction);
-    out_->writeMap("pimpactmax", m.impactPressure);
+    attempt([&] { out_->writeMap("hfmax", m.hf); });
+    attempt([&] { out_->writeMap("vfmax", m.vf); });
+    attempt([&] { out_->writeMap("hsmax", m.hs); });
+    attempt([&] { out_->writeMap("vsmax", m.vs); });
+    attempt([&] { out_->writeMap("htmax", m.h); });
+    attempt([&] { out_->writeMap("sfracmax", m.solidFraction); });
+    attempt([&] { out_->writeMap("pimpactmax", m.impactPressure); });
     if (!failed) {
       const std::vector<double> hs = solver_->hs(), qsx = solver_->qsx(), qsy = solver_->qsy(), hf = solver_->h();
       std::vector<double> total(hs.size()), deposit(hs.size(), 0.0);
@@ -280,22 +318,32 @@ void Simulation::writeFinal(const RunSummary& s, Ending ending) {
         // Deposit: solids that have come to rest (friction stopped them exactly).
         if (qsx[k] == 0.0 && qsy[k] == 0.0) deposit[k] = hs[k];
       }
-      out_->writeMap("hsfinal", hs);
-      out_->writeMap("htfinal", total);
-      out_->writeMap("deposit", deposit);
+      attempt([&] { out_->writeMap("hsfinal", hs); });
+      attempt([&] { out_->writeMap("htfinal", total); });
+      attempt([&] { out_->writeMap("deposit", deposit); });
     }
   }
   if (particles_) {
-    particles_->writeLayer(out_->path("particles_final.gpkg"));
+    attempt([&] { particles_->writeLayer(out_->claim("particles_final.gpkg")); });
     if (!failed) {
       const particles::ParticleGridFields pf = particles_->gridFields();
       const double none = -1.0;
-      out_->writeMap("hcfinal", pf.thickness);
-      out_->writeMap("cfracfinal", pf.cohesionFraction, &none);
-      out_->writeMap("releasedfluid", pf.releasedFluid);
+      attempt([&] { out_->writeMap("hcfinal", pf.thickness); });
+      attempt([&] { out_->writeMap("cfracfinal", pf.cohesionFraction, &none); });
+      attempt([&] { out_->writeMap("releasedfluid", pf.releasedFluid); });
     }
   }
-  out_->writeText("summary.json", summaryJson(s, ending));
+  if (!ioError.empty()) {
+    if (failure_.empty()) failure_ = "output failed: " + ioError;
+    ending = Ending::Failed;
+  }
+  try {
+    out_->writeText("summary.json", summaryJson(s, ending));
+  } catch (const IoError& e) {
+    throw IoError((failure_.empty() ? std::string() : failure_ + "; ") + "summary.json could not be written: " +
+                  e.what());
+  }
+  if (!ioError.empty()) throw IoError(failure_ + "; summary.json records the failure");
 }
 
 std::string Simulation::summaryJson(const RunSummary& s, Ending ending) const {

@@ -91,6 +91,10 @@ class Simulation {
   double wall() const;
   RunSummary finalize(Ending ending);
   void writeFinal(const RunSummary& summary, Ending ending);
+  /// Runs a write of the step loop; an IoError ends the run as failed (see the definition).
+  void guardedWrite(const std::function<void()>& write);
+  /// Runs a write of the final outputs, keeping the first IoError's message in `firstError`.
+  void attemptWrite(const std::function<void()>& write, std::string& firstError);
   std::string summaryJson(const RunSummary& s, Ending ending) const;
 
   const Scene& scene_;

@@ -148,11 +148,12 @@ TEST(HealthCheck, NamesTheFailingQuantityAndCell) {
   calm.bed.assign(g.cells(), 0.0);
   calm.manning.assign(g.cells(), 0.0);
   calm.h.assign(g.cells(), 1.0);
-  // Flat 1 m lake: the energy bound allows wave speeds of 2 sqrt(2) sqrt(2 g 1) + 2 sqrt(g) ~ 18.8 m/s.
-  const sim::HealthCheck health(dem, calm, 0.5);
-  EXPECT_NEAR(health.speedLimit(), 2 * std::sqrt(2.0) * std::sqrt(2 * 9.81) + 2 * std::sqrt(9.81), 1e-12);
+  // Flat 1 m lake: a fall of Z = 1 m (surface to bed) and a 1 m column, so no flow is faster than
+  // sqrt(2 g) + 2 sqrt(g) ~ 10.7 m/s (HealthCheck::speedBound).
   compute::Context& ctx = test::testContext(compute::Precision::Double);
   flow::FlowSettings settings;
+  const sim::HealthCheck health(dem, calm, settings);
+  EXPECT_NEAR(health.speedBound(), std::sqrt(2 * 9.81) + 2 * std::sqrt(9.81), 1e-12);
   flow::FlowSolver solver(ctx, g, settings);
 
   solver.setInput(calm);
@@ -200,17 +201,69 @@ TEST(HealthCheck, NamesTheSolidCellInADryRun) {
   dry.hs.assign(g.cells(), 0.5);
   dry.qsx.assign(g.cells(), 0.0);
   dry.qsy.assign(g.cells(), 0.0);
-  dry.qsx[g.index(13, 6)] = 30.0;  // 60 m/s in 0.5 m of solids on flat ground
-  const sim::HealthCheck health(dem, dry, 0.5);
   compute::Context& ctx = test::testContext(compute::Precision::Double);
   flow::FlowSettings settings;
   settings.twoPhase = true;
+  const sim::HealthCheck health(dem, dry, settings);  // the scene at rest sets the bound
+  dry.qsx[g.index(13, 6)] = 30.0;  // 60 m/s in 0.5 m of solids on flat ground
   flow::FlowSolver solver(ctx, g, settings);
   solver.setInput(dry);
   const std::string why = health.check(solver, 1e-4);
   EXPECT_NE(why.find("runaway velocity"), std::string::npos) << why;
   EXPECT_NE(why.find("column 13, row 6"), std::string::npos) << why;
   EXPECT_NE(why.find("solids"), std::string::npos) << why;
+}
+
+// The check judges the quantity it names: the flow speed against the energy bound, the wave speed
+// only for the CFL condition, and never films below Minimum Flow Height (issue 14: legal earth
+// pressure and viscosity stopped runs at step 1 as "runaway velocity"; a 1.5 nm film on a cliff
+// stopped one as a "CFL violation").
+TEST(HealthCheck, JudgesFlowSpeedNotWaveSpeedAndIgnoresFilms) {
+  const Grid g = Grid::make(20, 10, 1.0);
+  Raster dem(g, 0.0);
+  flow::FlowInput pile;
+  pile.mask.assign(g.cells(), 1);
+  pile.bed.assign(g.cells(), 0.0);
+  pile.manning.assign(g.cells(), 0.0);
+  pile.h.assign(g.cells(), 0.0);
+  pile.hs.assign(g.cells(), 0.0);
+  pile.qsx.assign(g.cells(), 0.0);
+  pile.qsy.assign(g.cells(), 0.0);
+  for (int j = 3; j < 7; ++j)
+    for (int i = 5; i < 9; ++i) {
+      pile.hs[g.index(i, j)] = 2.0;
+      pile.qsx[g.index(i, j)] = 2.0 * 3.0;  // 3 m/s
+    }
+  compute::Context& ctx = test::testContext(compute::Precision::Double);
+  flow::FlowSettings settings;
+  settings.twoPhase = true;
+  settings.debris.earthPressure = flow::EarthPressure::Constant;
+  settings.debris.kConst = 100.0;  // the range end of Earth Pressure Coefficient
+  const sim::HealthCheck health(dem, pile, settings);
+  // K = 100 pushes the front of a 2 m pile to at most 2 sqrt(100 g 2) ~ 89 m/s, the fall adds
+  // sqrt(2 g 2), the initial speed 3 m/s.
+  EXPECT_NEAR(health.speedBound(), std::sqrt(2 * 9.81 * 2) + 2 * std::sqrt(9.81 * 100 * 2) + 3.0, 1e-9);
+  flow::FlowSolver solver(ctx, g, settings);
+  solver.setInput(pile);
+  // Wave speed ~ 2 sqrt(100 g 2) + 3 ~ 92 m/s, far above the flow speed of 3 m/s: healthy.
+  EXPECT_GT(solver.diagnostics().maxSpeed, 80.0);
+  EXPECT_NEAR(solver.diagnostics().maxFlowSpeed, 3.0, 1e-12);
+  EXPECT_EQ(health.check(solver, 0.4 * solver.stableDt()), "");
+
+  // A film of 1.5 nm (below Minimum Flow Height, 1 um) on a 50 m cliff: the slope gives it a wave
+  // speed of 2 sqrt(g 50 m) ~ 44 m/s, but it carries no velocity, and a dt taken for the calm pile
+  // beside it is no CFL violation.
+  flow::FlowInput cliff = pile;
+  for (int j = 0; j < g.ny; ++j)
+    for (int i = 15; i < g.nx; ++i) cliff.bed[g.index(i, j)] = 50.0;
+  cliff.hs[g.index(14, 5)] = 1.5e-9;
+  settings.debris.kConst = 1.0;
+  const sim::HealthCheck cliffHealth(dem, cliff, settings);
+  flow::FlowSolver cliffSolver(ctx, g, settings);
+  cliffSolver.setInput(cliff);
+  EXPECT_GT(cliffSolver.diagnostics().maxSpeed, 40.0);
+  const double pileDt = 0.5 * 1.0 / (2 * 3.0 + 2 * 2 * std::sqrt(9.81 * 2));  // CFL 0.5 of the pile
+  EXPECT_EQ(cliffHealth.check(cliffSolver, pileDt), "");
 }
 
 TEST(Checkpoint, UnstableRunKeepsItsOutputs) {
@@ -272,8 +325,11 @@ TEST(Checkpoint, KilledRunsResumeBitwise) {
     int status = 0;
     ::waitpid(pid, &status, 0);
     // Whatever moment the kill hit, every map already in the folder is a complete raster.
-    for (const auto& e : fs::recursive_directory_iterator(out))
-      if (e.path().extension() == ".tif") EXPECT_NO_THROW(io::readRaster(e.path().string())) << e.path();
+    for (const auto& e : fs::recursive_directory_iterator(out)) {
+      if (e.path().extension() == ".tif") {
+        EXPECT_NO_THROW(io::readRaster(e.path().string())) << e.path();
+      }
+    }
     if (!fs::exists(out / "checkpoint.bin")) {
       // Killed before the first checkpoint: resuming must say so, by folder.
       EXPECT_EQ(runTalus("run --resume " + out.string()), 2) << "after a kill at " << delay << " s";

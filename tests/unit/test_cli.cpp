@@ -56,29 +56,7 @@ class Cli : public ::testing::Test {
 
   /// Writes dem.tif, water.tif and the run-file `name` (body appended after the scene keys).
   std::string writeScene(const std::string& extra = "", const std::string& name = "case.run") {
-    Grid g = Grid::make(20, 16, 2.0, 300000.0, 4000000.0);
-    Raster dem(g, 0.0), water(g, 0.0);
-    for (int j = 0; j < g.ny; ++j)
-      for (int i = 0; i < g.nx; ++i) {
-        dem.at(i, j) = 10.0 + 0.05 * (g.nx - i);
-        water.at(i, j) = (i >= 4 && i < 9 && j >= 4 && j < 10) ? 0.5 : 0.0;
-      }
-    talus::io::writeRaster((dir_ / "dem.tif").string(), dem);
-    talus::io::writeRaster((dir_ / "water.tif").string(), water);
-    const std::string text =
-        "[openLISEM runfile version 6.0]\n"
-        "[Input]\n"
-        "DEM=dem.tif\n"
-        "Include Initial Water=1\n"
-        "Initial Fluid Height=water.tif\n"
-        "[Time]\n"
-        "End Time=0.05\n"
-        "Timestep=1\n"
-        "[Output]\n"
-        "Output Directory=out\n" +
-        extra;
-    std::ofstream(dir_ / name, std::ios::binary) << text;
-    return (dir_ / name).string();
+    return talus::test::writeCliScene(dir_, extra, name);
   }
 
   /// Runs `talus ARGS` (args already shell-quoted as needed) in the temp folder.
