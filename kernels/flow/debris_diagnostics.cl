@@ -57,6 +57,10 @@ void debris_tile_diagnostics(__constant const FlowParams* p, __constant const De
 #endif
     speed = H > (real)0 ? fmax(fabs(us) + fabs(vs), fabs(uf) + fabs(vf)) + (real)2 * (sqrt(GRAVITY * H * fmax((real)1, K)) + w)
                         : (real)0;
+    // The CFL check of the health check judges the hyperbolic wave speed of layers above the dry
+    // threshold; the viscous rate below belongs to the time step (explicit diffusion) but says
+    // nothing about a wave outrunning the step, and it jumps as a film thins (1 / h_f).
+    if (hs > p->h_dry || h > p->h_dry) wave_wet = speed;
 #if DEBRIS_VISCOUS
     speed += visc_speed(p, dp, mask, S, hf, qfx, qfy, i, j);
 #endif
@@ -74,11 +78,10 @@ void debris_tile_diagnostics(__constant const FlowParams* p, __constant const De
     const real ws = us * slope[k] + vs * slope[n + k], wf = uf * slope[k] + vf * slope[n + k];
     kev = (real)0.5 * (rho_s * hs * ws * ws + dp->rho_f * h * wf * wf) * area;
     hmin = fmin(hs, h);
-    // Health-check quantities over phases thicker than the dry threshold (films below it carry no
-    // velocity): the material speed of either phase and the CFL wave speed.
+    // Health check: the material speed of either phase, over phases thicker than the dry
+    // threshold (films below it carry no velocity).
     if (hs > p->h_dry) flow = sqrt(us * us + vs * vs);
     if (h > p->h_dry) flow = fmax(flow, sqrt(uf * uf + vf * vf));
-    if (hs > p->h_dry || h > p->h_dry) wave_wet = speed;
     wet = H > (real)0 || isnan(H);
     if (isnan(H) || isnan(S[n + k]) || isnan(S[2 * n + k]) || isnan(qfx[k]) || isnan(qfy[k]))
       speed = flow = wave_wet = NAN;
