@@ -34,6 +34,7 @@
 #include "sim/Scene.hpp"
 #include "sim/Simulation.hpp"
 #include "support/CliRun.hpp"
+#include "support/ExpectInputError.hpp"
 
 #if defined(__SANITIZE_ADDRESS__)
 #define TALUS_TEST_ASAN 1
@@ -50,24 +51,8 @@ using talus::sim::talusRunKeys;
 
 namespace {
 
-bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
-
-/// Runs fn, expects an InputError whose message contains every one of parts; returns the message.
-std::string expectInputError(const std::function<void()>& fn, std::initializer_list<std::string> parts) {
-  try {
-    fn();
-  } catch (const InputError& e) {
-    const std::string what = e.what();
-    for (const std::string& part : parts)
-      EXPECT_TRUE(contains(what, part)) << "missing '" << part << "' in: " << what.substr(0, 2000);
-    return what;
-  } catch (const std::exception& e) {
-    ADD_FAILURE() << "expected talus::InputError, got: " << e.what();
-    return "";
-  }
-  ADD_FAILURE() << "expected talus::InputError, nothing was thrown";
-  return "";
-}
+using talus::test::contains;
+using talus::test::expectInputError;
 
 /// WKT of an EPSG code (from PROJ's database).
 std::string epsgWkt(int code) {
@@ -162,6 +147,13 @@ ChildResult inLimitedChild(const fs::path& report, unsigned long long headroom, 
   r.code = r.exited ? WEXITSTATUS(raw) : -1;
   r.what = talus::test::slurp(report);
   return r;
+}
+
+/// Expects the child to have ended by an InputError naming every one of parts.
+void expectChildInputError(const ChildResult& r, std::initializer_list<std::string> parts) {
+  ASSERT_TRUE(r.exited) << "the child crashed";
+  EXPECT_EQ(r.code, 0) << "0 = InputError, 1 = other exception, 2 = nothing thrown: " << r.what;
+  for (const std::string& part : parts) EXPECT_TRUE(contains(r.what, part)) << "missing '" << part << "' in: " << r.what;
 }
 
 /// A gentle slope, the DEM of the scene tests.
@@ -369,12 +361,8 @@ TEST_F(Geodata, RasterLargerThanTheMemoryLeftIsRefusedBeforeAllocating) {
   t.sparse = true;
   const std::string big = tiff("sparse.tif", t);
   ASSERT_LT(fs::file_size(big), 1u << 20) << "the test file should be small";
-  const ChildResult r = inLimitedChild(dir_ / "child.txt", 1ull << 30, [&] { talus::io::readRaster(big); });
-  ASSERT_TRUE(r.exited) << "readRaster crashed";
-  EXPECT_EQ(r.code, 0) << r.what;
-  for (const char* part : {"20000x20000", "400000000", "3.6 GB", "available"})
-    EXPECT_TRUE(contains(r.what, part)) << "missing '" << part << "' in: " << r.what;
-  EXPECT_TRUE(contains(r.what, big)) << r.what;
+  expectChildInputError(inLimitedChild(dir_ / "child.txt", 1ull << 30, [&] { talus::io::readRaster(big); }),
+                        {big, "20000x20000", "400000000", "3.6 GB", "available"});
 #endif
 }
 
@@ -391,15 +379,11 @@ TEST_F(Geodata, RunWhoseGridsExceedTheMemoryLeftIsRefusedAtLoading) {
   t.hasNodata = false;
   tiff("dem.tif", t);
   const std::string run = write("case.run", "DEM=dem.tif\n");
-  const ChildResult r = inLimitedChild(dir_ / "child.txt", 600ull << 20,
-                                       [&] { talus::sim::loadScene(RunConfig::load(run, talusRunKeys())); });
-  ASSERT_TRUE(r.exited) << "loadScene crashed";
-  EXPECT_EQ(r.code, 0) << r.what;
-  for (const char* part : {"3000x3000", "15 arrays of float", "available", "dem.tif"})
-    EXPECT_TRUE(contains(r.what, part)) << "missing '" << part << "' in: " << r.what;
+  const auto loadIt = [&] { talus::sim::loadScene(RunConfig::load(run, talusRunKeys())); };
+  expectChildInputError(inLimitedChild(dir_ / "child.txt", 600ull << 20, loadIt),
+                        {"3000x3000", "15 arrays of float", "available", "dem.tif"});
   // The same scene loads when the memory is there (the estimate is not a blanket refusal).
-  const ChildResult ok = inLimitedChild(dir_ / "child2.txt", 4ull << 30,
-                                        [&] { talus::sim::loadScene(RunConfig::load(run, talusRunKeys())); });
+  const ChildResult ok = inLimitedChild(dir_ / "child2.txt", 4ull << 30, loadIt);
   EXPECT_EQ(ok.code, 2) << ok.what;
 #endif
 }

@@ -52,6 +52,7 @@ using talus::io::RunConfig;
 using talus::sim::talusRunKeys;
 
 #include "support/CliRun.hpp"
+#include "support/ExpectInputError.hpp"
 
 namespace {
 
@@ -59,24 +60,8 @@ using talus::test::Outcome;
 using talus::test::shellQuote;
 using talus::test::slurp;
 
-bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
-
-/// Runs fn, expects an InputError whose message contains every one of parts; returns the message.
-std::string expectInputError(const std::function<void()>& fn, std::initializer_list<std::string> parts) {
-  try {
-    fn();
-  } catch (const InputError& e) {
-    const std::string what = e.what();
-    for (const std::string& part : parts)
-      EXPECT_TRUE(contains(what, part)) << "missing '" << part << "' in: " << what.substr(0, 2000);
-    return what;
-  } catch (const std::exception& e) {
-    ADD_FAILURE() << "expected talus::InputError, got another exception: " << e.what();
-    return "";
-  }
-  ADD_FAILURE() << "expected talus::InputError, nothing was thrown";
-  return "";
-}
+using talus::test::contains;
+using talus::test::expectInputError;
 
 /// A small georeferenced raster (12 x 10 cells of 2 m) filled by f(i, j).
 Raster gridRaster(const std::function<double(int, int)>& f) {
