@@ -531,7 +531,8 @@ std::vector<std::string> RunConfig::warnings() const {
   const auto& specs = registry_.keys();
   for (std::size_t i = 0; i < specs.size(); ++i) {
     const Entry& e = entries_[i];
-    if (e.origin == "default" || switchedOn(specs[i])) continue;
+    // A value equal to the default says nothing (run.resolved.run writes every key, defaults too).
+    if (e.origin == "default" || (e.raw == specs[i].defaultValue && !e.hasMult) || switchedOn(specs[i])) continue;
     out.push_back(printable(where(e) + ": key '" + specs[i].name + "' is given, but '" + specs[i].enabledBy +
                             "' is 0: the map is not read (set '" + specs[i].enabledBy + "=1' to use it)"));
   }

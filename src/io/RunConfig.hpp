@@ -57,7 +57,8 @@ class RunConfig {
   std::string echo() const;
 
   /// Warnings about the configuration that do not stop a run: maps given for a process that is
-  /// switched off (KeySpec::enabledBy), each naming where the map was given and the switch.
+  /// switched off (KeySpec::enabledBy) with a value other than the default, each naming where the
+  /// map was given and the switch.
   std::vector<std::string> warnings() const;
 
   /// Name of the run-file (or display name of the text) as used in messages.

@@ -320,6 +320,9 @@ TEST_F(Geodata, MapOfASwitchedOffProcessIsNotReadAndIsReported) {
   EXPECT_TRUE(contains(w[1], "'Initial Solid Height'") && contains(w[1], "'Include Initial Solids' is 0")) << w[1];
   const talus::sim::Scene s = talus::sim::loadScene(cfg);
   EXPECT_EQ(s.warnings, w);
+  // The resolved run-file gives every key, defaults included: only the maps given warn again.
+  const RunConfig back = RunConfig::fromText(cfg.echo(), dir_.string(), talusRunKeys(), "run.resolved.run");
+  EXPECT_EQ(back.warnings().size(), 2u);
   // With the switch on, the missing map is an error again.
   expectInputError([&] { load(write("on.run", "DEM=dem.tif\nInitial Fluid Height=nowhere.tif\nInclude Initial Water=1\n")); },
                    {"on.run:2", "nowhere.tif", "does not exist"});

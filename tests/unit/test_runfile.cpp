@@ -345,7 +345,7 @@ TEST_F(RunFile, AccessorsRejectUndeclaredKeysAndWrongTypes) {
 
 TEST_F(RunFile, RegistryIntegerKeysRulesAndTable) {
   KeyRegistry r;
-  KeySpec n{"Particle Count", KeyType::Integer, "10", "-", 0, 1000, {}, "particles", "Misc", false};
+  KeySpec n{"Particle Count", KeyType::Integer, "10", "-", 0, 1000, {}, "particles", "Misc", false, ""};
   r.add(n);
   EXPECT_THROW(r.add(n), std::logic_error);  // declared twice
   EXPECT_THROW(r.add(KeySpec{"Bad", KeyType::Choice, "x", "", 0, 1, {"a"}, "", "", false, ""}), std::logic_error);
