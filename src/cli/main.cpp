@@ -122,6 +122,9 @@ int runScene(int argc, char** argv) {
   if (!device.empty()) config.set("Device=" + device);
   if (!precision.empty()) config.set("Precision=" + precision);
   const talus::sim::Scene scene = talus::sim::loadScene(config);
+  // Warnings are shown even with --quiet: they say that the run is not quite what the run-file reads as.
+  for (const std::string& w : scene.warnings) std::fprintf(stderr, "talus: warning: %s\n", w.c_str());
+  talus::sim::requireMaterial(scene, config);
   using talus::sim::OutputMode;
   const OutputMode mode = !resumeDir.empty() ? OutputMode::Resume : overwrite ? OutputMode::Overwrite : OutputMode::New;
   talus::sim::Simulation sim(scene, config, outDir, mode);

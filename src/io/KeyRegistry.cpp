@@ -128,8 +128,13 @@ std::vector<std::string> KeyRegistry::suggestions(const std::string& misspelt) c
   const std::string wanted = normalizeKeyName(misspelt);
   const std::size_t limit = std::max<std::size_t>(2, wanted.size() / 4);
   std::vector<std::pair<std::size_t, std::size_t>> hits;  // (distance, key position)
+  // The edit distance is at least the difference in length, so only names of about the same
+  // length need the quadratic comparison: an 8 MiB misspelt key costs one pass, not minutes.
   for (std::size_t i = 0; i < keys_.size(); ++i) {
-    const std::size_t d = editDistance(wanted, normalizeKeyName(keys_[i].name));
+    const std::string name = normalizeKeyName(keys_[i].name);
+    const std::size_t gap = wanted.size() > name.size() ? wanted.size() - name.size() : name.size() - wanted.size();
+    if (gap > limit) continue;
+    const std::size_t d = editDistance(wanted, name);
     if (d <= limit) hits.emplace_back(d, i);
   }
   std::stable_sort(hits.begin(), hits.end(),
@@ -158,8 +163,9 @@ std::string KeyRegistry::markdownTable() const {
       }
       std::string def = k.required ? "(required)" : k.defaultValue;
       if (!k.required && k.defaultValue.empty()) def = "(empty)";
+      const std::string help = k.enabledBy.empty() ? k.help : k.help + "; read only with " + k.enabledBy + "=1";
       os << "| `" << k.name << "` | " << cell(type) << " | " << cell(def) << " | " << cell(k.unit)
-         << " | " << cell(rangeText(k)) << " | " << cell(k.help) << " |\n";
+         << " | " << cell(rangeText(k)) << " | " << cell(help) << " |\n";
     }
     os << "\n";
   }

@@ -39,6 +39,9 @@ struct KeySpec {
   std::string help;          ///< one-line description
   std::string section;       ///< section the key is listed under ("Input", "Time", ...)
   bool required = false;     ///< the run-file must give the key
+  /// A Flag key that switches on the process this map belongs to ("Include Initial Water"): while
+  /// it is 0 the map is not read, need not exist, and giving it earns a warning. Empty: always read.
+  std::string enabledBy;
 };
 
 /// A consistency rule over several keys, checked after every key parsed. Returns "" when the

@@ -21,8 +21,11 @@
 #include <system_error>
 #include <vector>
 
-#include "io/GdalErrors.hpp"
 #include "core/Error.hpp"
+#include "core/Memory.hpp"
+#include "io/AsciiGridScan.hpp"
+#include "io/GdalErrors.hpp"
+#include "io/RasterCrs.hpp"
 
 namespace fs = std::filesystem;
 
@@ -135,9 +138,61 @@ void writeWithGdal(const std::string& tmpPath, const std::string& path, const Ra
   }
 }
 
+/// Metres per horizontal unit of the raster's CRS. Throws for a geographic CRS (its cells are
+/// degrees, not lengths) and for a projected one in another unit unless the options convert it.
+double horizontalUnitToMetre(const std::string& path, const char* wkt, const RasterReadOptions& options) {
+  const detail::CrsUnits crs = detail::inspectCrs(wkt != nullptr ? wkt : "");
+  if (crs.none) return 1.0;  // no CRS: taken as metres (docs/runfile.md)
+  if (crs.geographic)
+    throw InputError("raster '" + path + "' is in a geographic CRS (" + crs.description + ", unit " +
+                     crs.horizontalUnit + "): its cells are angles, not lengths; reproject it to a projected "
+                     "CRS in metres (e.g. gdalwarp -t_srs EPSG:<UTM zone>)");
+  if (crs.metric()) return 1.0;
+  if (!options.convertLinearUnits) {
+    std::ostringstream s;
+    s.precision(10);
+    s << "raster '" << path << "' is in " << crs.description << " with horizontal unit " << crs.horizontalUnit
+      << " (" << crs.horizontalToMetre << " m) and vertical unit " << crs.verticalUnit << " ("
+      << crs.verticalToMetre << " m); Talus computes in metres: reproject it, or set 'Convert Raster Units=1' "
+      << "to convert cell sizes and elevations/thicknesses to metres";
+    throw InputError(s.str());
+  }
+  return crs.horizontalToMetre;
+}
+
+/// Metres per unit of the values (elevations): the vertical unit of the CRS (1 unless converting).
+double verticalUnitToMetre(const char* wkt, const RasterReadOptions& options) {
+  if (!options.convertLinearUnits) return 1.0;
+  const detail::CrsUnits crs = detail::inspectCrs(wkt != nullptr ? wkt : "");
+  return crs.none || crs.geographic ? 1.0 : crs.verticalToMetre;
+}
+
+/// Refuses a raster whose values and mask would not fit into the memory this process can still
+/// take, before anything is allocated (a small sparse file can declare billions of cells).
+void requireMemoryFor(const std::string& path, int nx, int ny) {
+  const double cells = static_cast<double>(nx) * static_cast<double>(ny);
+  const double need = cells * (sizeof(double) + sizeof(uint8_t));
+  const double available = static_cast<double>(availableMemoryBytes());
+  if (available > 0 && need > available)
+    throw InputError("raster '" + path + "' declares " + std::to_string(nx) + "x" + std::to_string(ny) + " cells (" +
+                     std::to_string(static_cast<unsigned long long>(cells)) + "), which need " + formatBytes(need) +
+                     " to load, but only " + formatBytes(available) + " of memory is available");
+}
+
+/// Applies GDAL's band scale and offset (e.g. an Int16 DEM in decimetres with scale 0.1) to the
+/// valid cells. Nodata has been matched against the raw values before, as the file stores them.
+void applyScaleAndOffset(GDALRasterBand& band, Raster& r) {
+  int hasScale = 0, hasOffset = 0;
+  const double scale = band.GetScale(&hasScale), offset = band.GetOffset(&hasOffset);
+  const double a = hasScale != 0 ? scale : 1.0, b = hasOffset != 0 ? offset : 0.0;
+  if (a == 1.0 && b == 0.0) return;
+  for (std::size_t k = 0; k < r.values.size(); ++k)
+    if (r.valid[k] != 0) r.values[k] = r.values[k] * a + b;
+}
+
 }  // namespace
 
-Raster readRaster(const std::string& path) {
+Raster readRaster(const std::string& path, const RasterReadOptions& options, std::vector<std::string>* warnings) {
   ensureGdalRegistered();
   if (!isVirtualPath(path)) {
     std::error_code ec;
@@ -167,17 +222,19 @@ Raster readRaster(const std::string& path) {
   if (gt[2] != 0.0 || gt[4] != 0.0) {
     throw InputError("raster '" + path + "' has a rotated geotransform, which is not supported");
   }
-  const double width = gt[1];
+  const double nativeWidth = gt[1];
   const double height = -gt[5];  // north-up rasters have a negative pixel height
-  if (!std::isfinite(width) || !std::isfinite(height) || width <= 0.0 || height == 0.0) {
+  if (!std::isfinite(nativeWidth) || !std::isfinite(height) || nativeWidth <= 0.0 || height == 0.0) {
     std::ostringstream s;
-    s << "raster '" << path << "' has a zero or negative cell size (width " << width + 0.0
+    s << "raster '" << path << "' has a zero or negative cell size (width " << nativeWidth + 0.0
       << " m, height " << height + 0.0 << " m)";
     throw InputError(s.str());
   }
   if (height < 0.0) {
     throw InputError("raster '" + path + "' is south-up (positive pixel height), which is not supported");
   }
+  const double toMetre = horizontalUnitToMetre(path, ds->GetProjectionRef(), options);
+  const double width = nativeWidth * toMetre;
   // Cells from a millimetre to a thousand kilometres: outside that the cell area under- or
   // overflows, or the grid is surely a unit mistake (degrees for metres, say).
   if (width < 1e-3 || width > 1e6) {
@@ -186,10 +243,10 @@ Raster readRaster(const std::string& path) {
       << "(a projected grid in metres is needed)";
     throw InputError(s.str());
   }
-  if (std::fabs(width - height) > 1e-7 * std::max(width, height)) {
+  if (std::fabs(nativeWidth - height) > 1e-7 * std::max(nativeWidth, height)) {
     std::ostringstream s;
     s.precision(12);
-    s << "raster '" << path << "' has non-square cells (" << width << " m wide, " << height
+    s << "raster '" << path << "' has non-square cells (" << nativeWidth << " m wide, " << height
       << " m high); resample it to square cells";
     throw InputError(s.str());
   }
@@ -201,6 +258,9 @@ Raster readRaster(const std::string& path) {
   r.grid.geoTransform = gt;
   const char* wkt = ds->GetProjectionRef();
   r.grid.projectionWkt = wkt != nullptr ? wkt : "";
+  if (ds->GetRasterCount() > 1 && warnings != nullptr)
+    warnings->push_back("raster '" + path + "' has " + std::to_string(ds->GetRasterCount()) +
+                        " bands; only band 1 is read");
   GDALRasterBand* band = ds->GetRasterBand(1);
   {
     // Check that the data can exist before allocating the grid: a short file whose header claims a
@@ -236,6 +296,13 @@ Raster readRaster(const std::string& path) {
     if (driver == "AAIGrid" && !ec && bytes < 2 * cells)
       throw InputError("raster '" + path + "' is truncated: its header claims " + std::to_string(nx) + "x" +
                        std::to_string(ny) + " cells but the file has only " + std::to_string(bytes) + " bytes");
+    if (driver == "AAIGrid") {
+      const std::string bad = detail::findNonNumericAsciiCell(path, nx, ny);
+      if (!bad.empty())
+        throw InputError("ESRI ASCII grid '" + path + "' holds a value that is not a number: " + bad +
+                         " (GDAL would read it as 0; write the grid's NODATA_value there instead)");
+    }
+    requireMemoryFor(path, nx, ny);
     if (driver != "AAIGrid") {
       std::vector<double> lastRow(static_cast<std::size_t>(nx));
       if (band->RasterIO(GF_Read, 0, ny - 1, nx, 1, lastRow.data(), nx, 1, GDT_Float64, 0, 0, nullptr) != CE_None ||
@@ -247,7 +314,7 @@ Raster readRaster(const std::string& path) {
   try {
     r.values.resize(cells);
     r.valid.assign(cells, 1);
-  } catch (const std::bad_alloc&) {
+  } catch (const std::bad_alloc&) {  // the estimate above was too optimistic (overcommit, fragmentation)
     throw InputError("raster '" + path + "' is too large to load: " + std::to_string(cells) + " cells");
   }
 
@@ -267,6 +334,12 @@ Raster readRaster(const std::string& path) {
   for (std::size_t k = 0; k < r.values.size(); ++k) {
     const double v = r.values[k];
     if (!std::isfinite(v) || (hasNodata != 0 && (v == nodata || v == nodataAsFloat))) r.valid[k] = 0;
+  }
+  applyScaleAndOffset(*band, r);
+  if (options.valuesAreLengths) {
+    const double toMetreVertical = verticalUnitToMetre(ds->GetProjectionRef(), options);
+    if (toMetreVertical != 1.0)
+      for (double& v : r.values) v *= toMetreVertical;
   }
   return r;
 }

@@ -3,18 +3,34 @@
 // only part of the engine that includes GDAL; callers see only talus types.
 #pragma once
 #include <string>
+#include <vector>
 
 #include "core/Raster.hpp"
 
 namespace talus::io {
 
+/// How readRaster treats a raster whose CRS is projected in a unit other than the metre.
+struct RasterReadOptions {
+  /// Convert instead of refusing: the cell size becomes metres (the georeference and CRS stay as
+  /// the file has them, so outputs overlay the inputs).
+  bool convertLinearUnits = false;
+  /// With convertLinearUnits: the values are lengths (elevations, thicknesses) and are converted
+  /// too, by the vertical unit of a compound CRS, else by the horizontal one.
+  bool valuesAreLengths = false;
+};
+
 /// Reads band 1 of a GeoTIFF, PCRaster .map or ESRI ASCII grid (anything GDAL opens). Nodata cells
 /// (and NaN/Inf values) become invalid in Raster::valid; Raster::nodata takes the file's nodata value
-/// when it has one. Throws talus::InputError naming the file on: a missing or unreadable file, a file
+/// when it has one. The band's scale and offset (GDAL metadata) are applied: value = raw * scale +
+/// offset. Throws talus::InputError naming the file on: a missing or unreadable file, a file
 /// that is not a raster, a missing georeference, zero, negative or non-square cells (naming both
-/// sizes), a rotated or south-up geotransform, more than 2^31 cells (or too little memory to hold
-/// them), and truncated or corrupt data (GDAL read error). Files with several bands use band 1.
-Raster readRaster(const std::string& path);
+/// sizes), a rotated or south-up geotransform, a geographic CRS (degrees) or a projected one in
+/// another unit than the metre (unless options convert it), more than 2^31 cells or more than the
+/// memory available (naming both), a token of an ESRI ASCII grid that is not a number, and
+/// truncated or corrupt data (GDAL read error). A raster without a CRS is taken to be in metres.
+/// Files with several bands use band 1, with a warning appended to warnings (when given).
+Raster readRaster(const std::string& path, const RasterReadOptions& options = {},
+                  std::vector<std::string>* warnings = nullptr);
 
 /// Throws talus::InputError "map 'B' (path) does not share the grid of 'A' (path): 100x80 cells of
 /// 5 m at (x0, y0) vs ..." when sameGrid(reference.grid, other.grid) is false; the map names are the

@@ -10,6 +10,7 @@
 #include <charconv>
 #include <climits>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -27,6 +28,11 @@ namespace {
 constexpr const char* kMapDirectoryKey = "Map Directory";
 constexpr long kRankCommandLine = LONG_MAX - 1;  // command-line problems come after the file's
 constexpr long kRankDefault = LONG_MAX;          // then missing keys and rules over defaults
+/// Largest run-file read. Real run-files are a few kilobytes (OpenLISEM Hazard's ~30 kB); the cap
+/// keeps `talus run /dev/urandom`-like mistakes from reading until memory runs out.
+constexpr std::uintmax_t kMaxRunFileBytes = 4u << 20;
+/// User text longer than this is cut in messages (an 8 MiB key must not become an 8 MiB message).
+constexpr std::size_t kMaxShown = 120;
 
 std::string trim(const std::string& s) {
   std::size_t a = 0, b = s.size();
@@ -56,9 +62,9 @@ Number parseNumber(const std::string& text, double& value) {
 }
 
 /// An absolute, normalised path: value resolved against base (absolute values kept; backslashes
-/// read as folder separators; an empty value is base itself).
-std::string resolvePath(const std::string& base, std::string value) {
-  std::replace(value.begin(), value.end(), '\\', '/');
+/// read as folder separators unless the value was quoted; an empty value is base itself).
+std::string resolvePath(const std::string& base, std::string value, bool quoted = false) {
+  if (!quoted) std::replace(value.begin(), value.end(), '\\', '/');
   fs::path p = value.empty() ? fs::path(base) : fs::path(value);
   if (p.is_relative()) p = fs::path(base) / p;
   std::string s = p.lexically_normal().string();
@@ -80,13 +86,89 @@ std::string checkRange(const KeySpec& spec, double v, double raw, double mult) {
   return what + " is outside the valid range " + rangeText(spec) + unitSuffix(spec);
 }
 
-/// Splits "Value[=Multiplier]"; Text and Directory values take everything after the first '='.
-void splitValue(const KeySpec& spec, const std::string& rest, std::string& value, std::string& mult,
-                bool& hasMult) {
-  const std::size_t eq = rest.find('=');
+/// User text for a message: cut after kMaxShown characters, saying how long it was.
+std::string clip(const std::string& text) {
+  if (text.size() <= kMaxShown) return text;
+  return text.substr(0, kMaxShown) + "... (" + std::to_string(text.size()) + " bytes)";
+}
+
+/// Reads a quoted value starting at rest[0] == '"': up to the next unescaped '"', with \\, \" and
+/// \xHH (two hex digits) as escapes and every other character literal. Sets end to the position
+/// after the closing quote; returns false when there is none.
+bool unquote(const std::string& rest, std::string& value, std::size_t& end) {
+  value.clear();
+  for (std::size_t i = 1; i < rest.size(); ++i) {
+    const char c = rest[i];
+    if (c == '"') {
+      end = i + 1;
+      return true;
+    }
+    if (c == '\\' && i + 1 < rest.size() && (rest[i + 1] == '\\' || rest[i + 1] == '"')) {
+      value += rest[++i];
+    } else if (c == '\\' && i + 3 < rest.size() && rest[i + 1] == 'x' && std::isxdigit(static_cast<unsigned char>(rest[i + 2])) &&
+               std::isxdigit(static_cast<unsigned char>(rest[i + 3]))) {
+      value += static_cast<char>(std::stoi(rest.substr(i + 2, 2), nullptr, 16));
+      i += 3;
+    } else {
+      value += c;
+    }
+  }
+  return false;
+}
+
+/// Splits "Value[=Multiplier]"; Text and Directory values take everything after the first '='. A
+/// value starting with '"' is quoted (see unquote): it may hold '=', spaces at its ends and
+/// backslashes that are not folder separators. Returns "" or the problem.
+std::string splitValue(const KeySpec& spec, const std::string& rest, std::string& value, std::string& mult,
+                       bool& hasMult, bool& quoted) {
+  const std::string t = trim(rest);
+  quoted = !t.empty() && t[0] == '"';
+  if (quoted) {
+    std::size_t end = 0;
+    if (!unquote(t, value, end)) return "quoted value " + clip(t) + " has no closing '\"'";
+    const std::string after = trim(t.substr(end));
+    hasMult = !after.empty();
+    if (hasMult && after[0] != '=') return "unexpected text '" + clip(after) + "' after the quoted value";
+    mult = hasMult ? trim(after.substr(1)) : "";
+    return "";
+  }
+  const std::size_t eq = t.find('=');
   hasMult = eq != std::string::npos && spec.type != KeyType::Text && spec.type != KeyType::Directory;
-  value = trim(hasMult ? rest.substr(0, eq) : rest);
-  mult = hasMult ? trim(rest.substr(eq + 1)) : "";
+  value = trim(hasMult ? t.substr(0, eq) : t);
+  mult = hasMult ? trim(t.substr(eq + 1)) : "";
+  return "";
+}
+
+/// True when echo() must quote a value for it to read back as it is: text a plain value cannot
+/// carry ('=' would start a multiplier, spaces at the ends are trimmed, backslashes become folder
+/// separators, a leading '"' starts a quote, control characters would break the line).
+bool needsQuotes(const std::string& v) {
+  if (v.empty()) return false;
+  if (std::isspace(static_cast<unsigned char>(v.front())) || std::isspace(static_cast<unsigned char>(v.back())) ||
+      v.front() == '"')
+    return true;
+  for (unsigned char c : v)
+    if (c == '=' || c == '\\' || c < 0x20 || c == 0x7f) return true;
+  return false;
+}
+
+/// The value as echo() writes it: as is, or quoted with \\, \" and \xHH escapes.
+std::string quoteForEcho(const std::string& v) {
+  if (!needsQuotes(v)) return v;
+  std::string out = "\"";
+  for (unsigned char c : v) {
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += static_cast<char>(c);
+    } else if (c < 0x20 || c == 0x7f) {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\x%02x", c);
+      out += buf;
+    } else {
+      out += static_cast<char>(c);
+    }
+  }
+  return out + "\"";
 }
 
 /// The "did you mean" part of an unknown-key message ("" without suggestions).
@@ -140,13 +222,27 @@ RunConfig RunConfig::load(const std::string& runFilePath, const KeyRegistry& key
   std::error_code ec;
   if (fs::is_directory(runFilePath, ec))
     throw InputError("cannot read run-file '" + runFilePath + "': it is a folder");
+  // Only regular files: a device (/dev/zero) or a pipe has no end to wait for.
+  const fs::file_status st = fs::status(runFilePath, ec);
+  if (!ec && fs::exists(st) && !fs::is_regular_file(st))
+    throw InputError("cannot read run-file '" + runFilePath + "': not a regular file (a device, pipe or socket)");
+  const std::uintmax_t size = fs::file_size(runFilePath, ec);
+  if (!ec && size > kMaxRunFileBytes)
+    throw InputError("cannot read run-file '" + runFilePath + "': it has " + std::to_string(size) +
+                     " bytes, more than the " + std::to_string(kMaxRunFileBytes >> 20) +
+                     " MiB a run-file may have (is it a run-file?)");
   std::ifstream in(runFilePath, std::ios::binary);
   if (!in) throw InputError("cannot read run-file '" + runFilePath + "': " + std::strerror(errno));
-  std::ostringstream text;
-  text << in.rdbuf();
+  // Read at most one byte more than the cap: a file that grows while being read is still bounded.
+  std::string content(kMaxRunFileBytes + 1, '\0');
+  in.read(content.data(), static_cast<std::streamsize>(content.size()));
   if (in.bad()) throw InputError("cannot read run-file '" + runFilePath + "': read error");
+  content.resize(static_cast<std::size_t>(in.gcount()));
+  if (content.size() > kMaxRunFileBytes)
+    throw InputError("cannot read run-file '" + runFilePath + "': more than " +
+                     std::to_string(kMaxRunFileBytes >> 20) + " MiB");
   const std::string folder = fs::absolute(fs::path(runFilePath)).parent_path().string();
-  return fromText(text.str(), folder, keys, runFilePath);
+  return fromText(content, folder, keys, runFilePath);
 }
 
 RunConfig RunConfig::fromText(const std::string& text, const std::string& baseDir, const KeyRegistry& keys,
@@ -172,7 +268,7 @@ RunConfig RunConfig::fromText(const std::string& text, const std::string& baseDi
     seenContent = true;
     const std::size_t eq = t.find('=');
     if (eq == std::string::npos) {
-      errors.emplace_back(n, at + ": key '" + t + "': no '=' in the line; expected Name=Value");
+      errors.emplace_back(n, at + ": key '" + clip(t) + "': no '=' in the line; expected Name=Value");
       continue;
     }
     const std::string name = trim(t.substr(0, eq));
@@ -182,7 +278,7 @@ RunConfig RunConfig::fromText(const std::string& text, const std::string& baseDi
     }
     const int idx = keys.indexOf(name);
     if (idx < 0) {
-      errors.emplace_back(n, at + ": key '" + name + "': unknown key" + didYouMean(keys, name));
+      errors.emplace_back(n, at + ": key '" + clip(name) + "': unknown key" + didYouMean(keys, name));
       continue;
     }
     const KeySpec& spec = keys.keys()[static_cast<std::size_t>(idx)];
@@ -192,9 +288,14 @@ RunConfig RunConfig::fromText(const std::string& text, const std::string& baseDi
                                  at);
       continue;
     }
-    splitValue(spec, t.substr(eq + 1), e.raw, e.rawMult, e.hasMult);
+    const std::string problem = splitValue(spec, t.substr(eq + 1), e.raw, e.rawMult, e.hasMult, e.quoted);
     e.origin = at;
     e.line = n;
+    if (!problem.empty()) {
+      errors.emplace_back(n, at + ": key '" + spec.name + "': " + problem);
+      e.raw = spec.defaultValue;  // validated as the default, so the line is reported once
+      e.hasMult = e.quoted = false;
+    }
   }
   for (auto& err : cfg.validate()) errors.push_back(std::move(err));
   if (!errors.empty()) throw InputError(joinLines(std::move(errors)));
@@ -206,14 +307,25 @@ void RunConfig::set(const std::string& assignment) {
   const std::string t = trim(assignment);
   const std::size_t eq = t.find('=');
   if (eq == std::string::npos)
-    throw InputError(printable(where + ": key '" + t + "': no '=' in '" + t + "'; expected Key=Value[=Multiplier]"));
+    throw InputError(printable(where + ": key '" + clip(t) + "': no '=' in '" + clip(t) +
+                               "'; expected Key=Value[=Multiplier]"));
   const std::string name = trim(t.substr(0, eq));
+  // A run-file line cannot hold a line break; an override must not either (it would inject a line
+  // into run.resolved.run). A tab is blank space, as in the file.
+  for (unsigned char c : assignment)
+    if ((c < 0x20 && c != '\t') || c == 0x7f)
+      throw InputError(printable(where + ": key '" + clip(name) +
+                                 "': the assignment holds a control character (line break, NUL, ...), "
+                                 "which a run-file value cannot hold"));
   const int idx = registry_.indexOf(name);
-  if (idx < 0) throw InputError(printable(where + ": key '" + name + "': unknown key" + didYouMean(registry_, name)));
+  if (idx < 0)
+    throw InputError(printable(where + ": key '" + clip(name) + "': unknown key" + didYouMean(registry_, name)));
   RunConfig updated = *this;
   Entry& e = updated.entries_[static_cast<std::size_t>(idx)];
   e = Entry{};
-  splitValue(registry_.keys()[static_cast<std::size_t>(idx)], t.substr(eq + 1), e.raw, e.rawMult, e.hasMult);
+  const KeySpec& spec = registry_.keys()[static_cast<std::size_t>(idx)];
+  const std::string problem = splitValue(spec, t.substr(eq + 1), e.raw, e.rawMult, e.hasMult, e.quoted);
+  if (!problem.empty()) throw InputError(printable(where + ": key '" + spec.name + "': " + problem));
   e.origin = "command line";
   auto errors = updated.validate();
   if (!errors.empty()) throw InputError(joinLines(std::move(errors)));
@@ -280,24 +392,24 @@ std::string RunConfig::parseEntry(std::size_t i, Entry& e, const std::string& ma
   e.multiplier = 1;
   if (e.hasMult) {
     if (spec.type != KeyType::Real && spec.type != KeyType::Integer && spec.type != KeyType::Map)
-      return "a multiplier ('" + e.rawMult + "') applies only to numbers and maps";
+      return "a multiplier ('" + clip(e.rawMult) + "') applies only to numbers and maps";
     if (parseNumber(e.rawMult, e.multiplier) != Number::Ok)
-      return "bad multiplier '" + e.rawMult + "': expected a finite number";
+      return "bad multiplier '" + clip(e.rawMult) + "': expected a finite number";
   }
   switch (spec.type) {
     case KeyType::Flag: {
       const std::string v = lower(e.raw);
       if (v == "1" || v == "true" || v == "yes" || v == "on") e.flagValue = true;
       else if (v == "0" || v == "false" || v == "no" || v == "off") e.flagValue = false;
-      else return "bad flag value '" + e.raw + "': expected 0 or 1 (or true/false, yes/no)";
+      else return "bad flag value '" + clip(e.raw) + "': expected 0 or 1 (or true/false, yes/no)";
       return "";
     }
     case KeyType::Integer:
     case KeyType::Real: {
       if (e.raw.empty()) return "no value given; expected a number" + unitSuffix(spec);
       const Number n = parseNumber(e.raw, e.number);
-      if (n == Number::NotANumber) return "bad number '" + e.raw + "'";
-      if (n == Number::NotFinite) return "bad number '" + e.raw + "': not finite";
+      if (n == Number::NotANumber) return "bad number '" + clip(e.raw) + "'";
+      if (n == Number::NotFinite) return "bad number '" + clip(e.raw) + "': not finite";
       const double v = e.number * e.multiplier;
       if (spec.type == KeyType::Integer && (v != std::round(v) || std::fabs(v) > INT_MAX))
         return "value " + formatNumber(v) + " is not an integer";
@@ -311,13 +423,13 @@ std::string RunConfig::parseEntry(std::size_t i, Entry& e, const std::string& ma
       }
       std::string list;
       for (std::size_t c = 0; c < spec.choices.size(); ++c) list += (c ? ", " : "") + spec.choices[c];
-      return "bad choice '" + e.raw + "': expected one of " + list;
+      return "bad choice '" + clip(e.raw) + "': expected one of " + list;
     }
     case KeyType::Text:
       e.textValue = e.raw;
       return "";
     case KeyType::Directory:
-      e.textValue = resolvePath(baseDir_, e.raw);
+      e.textValue = resolvePath(baseDir_, e.raw, e.quoted);
       return "";
     case KeyType::Map: {
       e.mapValue = MapValue{};
@@ -325,13 +437,14 @@ std::string RunConfig::parseEntry(std::size_t i, Entry& e, const std::string& ma
       if (e.raw.empty()) return "no value given; expected a raster file or a number";
       double c = 0;
       const Number n = parseNumber(e.raw, c);
-      if (n == Number::NotFinite) return "bad number '" + e.raw + "': not finite";
-      if (n == Number::Ok) {
+      if (n == Number::NotFinite) return "bad number '" + clip(e.raw) + "': not finite";
+      if (n == Number::Ok && !e.quoted) {
         e.mapValue.constant = c;
         return checkRange(spec, c * e.multiplier, c, e.multiplier);
       }
       e.mapValue.isFile = true;
-      e.mapValue.file = resolvePath(mapDir, e.raw);
+      e.mapValue.file = resolvePath(mapDir, e.raw, e.quoted);
+      if (!switchedOn(spec)) return "";  // a map of a process that is off is not read (warnings())
       std::error_code ec;
       if (!fs::exists(e.mapValue.file, ec)) return "map file '" + e.mapValue.file + "' does not exist";
       if (fs::is_directory(e.mapValue.file, ec))
@@ -397,12 +510,33 @@ std::string RunConfig::echo() const {
       if (spec.type == KeyType::Flag) value = e.flagValue ? "1" : "0";
       if (spec.type == KeyType::Choice || spec.type == KeyType::Directory) value = e.textValue;
       if (spec.type == KeyType::Map && e.mapValue.isFile) value = e.mapValue.file;
-      os << spec.name << "=" << value;
+      os << spec.name << "=" << quoteForEcho(value);
       if (e.hasMult) os << "=" << e.rawMult;
       os << "\n";
     }
   }
   return os.str();
+}
+
+bool RunConfig::switchedOn(const KeySpec& spec) const {
+  if (spec.enabledBy.empty()) return true;
+  const int idx = registry_.indexOf(spec.enabledBy);
+  if (idx < 0) throw std::logic_error("RunConfig: key '" + spec.name + "' is enabled by undeclared '" + spec.enabledBy + "'");
+  const std::string v = lower(entries_[static_cast<std::size_t>(idx)].raw);
+  return v == "1" || v == "true" || v == "yes" || v == "on";
+}
+
+std::vector<std::string> RunConfig::warnings() const {
+  std::vector<std::string> out;
+  const auto& specs = registry_.keys();
+  for (std::size_t i = 0; i < specs.size(); ++i) {
+    const Entry& e = entries_[i];
+    // A value equal to the default says nothing (run.resolved.run writes every key, defaults too).
+    if (e.origin == "default" || (e.raw == specs[i].defaultValue && !e.hasMult) || switchedOn(specs[i])) continue;
+    out.push_back(printable(where(e) + ": key '" + specs[i].name + "' is given, but '" + specs[i].enabledBy +
+                            "' is 0: the map is not read (set '" + specs[i].enabledBy + "=1' to use it)"));
+  }
+  return out;
 }
 
 }  // namespace talus::io

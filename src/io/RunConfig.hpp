@@ -56,6 +56,11 @@ class RunConfig {
   /// back to the same values.
   std::string echo() const;
 
+  /// Warnings about the configuration that do not stop a run: maps given for a process that is
+  /// switched off (KeySpec::enabledBy) with a value other than the default, each naming where the
+  /// map was given and the switch.
+  std::vector<std::string> warnings() const;
+
   /// Name of the run-file (or display name of the text) as used in messages.
   const std::string& sourceName() const { return source_; }
   /// Absolute folder relative paths in the run-file resolve against.
@@ -69,6 +74,7 @@ class RunConfig {
     std::string raw;         // value text, trimmed
     std::string rawMult;     // multiplier text, "" when none
     bool hasMult = false;
+    bool quoted = false;     // the value was written in quotes (backslashes are not separators)
     std::string origin = "default";
     int line = 0;            // run-file line, 0 for defaults and the command line
     // parsed
@@ -86,6 +92,8 @@ class RunConfig {
   std::vector<std::pair<long, std::string>> validate();
   /// Parses one entry of the key at position i; returns "" or the problem (without location).
   std::string parseEntry(std::size_t i, Entry& e, const std::string& mapDir) const;
+  /// False when the key belongs to a process whose switch (KeySpec::enabledBy) is off.
+  bool switchedOn(const KeySpec& spec) const;
   /// Location prefix of messages about an entry ("file:12", "command line --set", or the file).
   std::string where(const Entry& e) const;
   /// The entry of a declared key of the given type; std::logic_error otherwise.

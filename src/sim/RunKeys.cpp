@@ -72,6 +72,23 @@ KeySpec required(KeySpec k) {
   return k;
 }
 
+/// A map read only while the flag `process` is 1 (KeySpec::enabledBy).
+KeySpec readWhen(std::string process, KeySpec k) {
+  k.enabledBy = std::move(process);
+  return k;
+}
+
+/// A map of the solids, read only with Include Initial Solids=1.
+KeySpec solidMap(std::string name, std::string def, std::string unit, double min, double max, std::string help) {
+  return readWhen("Include Initial Solids", map(std::move(name), std::move(def), std::move(unit), min, max, std::move(help)));
+}
+
+/// A map of the particles, read only with Use Material Point Method=1.
+KeySpec particleMap(std::string name, std::string def, std::string unit, double min, double max, std::string help) {
+  return readWhen("Use Material Point Method",
+                  map(std::move(name), std::move(def), std::move(unit), min, max, std::move(help)));
+}
+
 /// Adds keys to a registry under one section.
 class Section {
  public:
@@ -92,21 +109,25 @@ void addInputKeys(KeyRegistry& r) {
       << text("Map Directory", "", "folder holding the maps (relative to the run-file's folder)",
               KeyType::Directory)
       << required(map("DEM", "", "m", -kInf, kInf, "bed elevation; nodata cells are outside the domain"))
+      << flag("Convert Raster Units", "0",
+              "convert maps in a projected CRS in feet (or another non-metre unit) to metres: cell sizes, "
+              "elevations and thicknesses; 0: such maps are refused")
       << flag("Include Initial Water", "0", "start with the water of Initial Fluid Height")
-      << map("Initial Fluid Height", "0", "m", 0, 1e4, "vertical water thickness at t = start");
+      << readWhen("Include Initial Water",
+                  map("Initial Fluid Height", "0", "m", 0, 1e4, "vertical water thickness at t = start"));
 }
 
 /// Solids of the two-phase grid model (spec §4): OpenLISEM Hazard's names and units first.
 void addSolidKeys(KeyRegistry& r) {
   Section(r, "Solids")
       << flag("Include Initial Solids", "0", "start with the solids of Initial Solid Height (two-phase model)")
-      << map("Initial Solid Height", "0", "m", 0, 1e4, "vertical solid thickness alpha_s H at t = start")
-      << map("Initial Solid Density", "2650", "kg/m^3", 1000, 6000, "density rho_s of the solid grains")
-      << map("Initial Solid IFA", "0.5236", "rad", 0, 1.5, "internal friction angle phi of the solids")
-      << map("Initial Solid Rocksize", "0.01", "m", 1e-6, 100, "representative grain or block size d")
-      << map("Initial Cohesion", "0", "kPa", 0, 1e6, "cohesion c (reduces the lateral pressure, Bell)")
+      << solidMap("Initial Solid Height", "0", "m", 0, 1e4, "vertical solid thickness alpha_s H at t = start")
+      << solidMap("Initial Solid Density", "2650", "kg/m^3", 1000, 6000, "density rho_s of the solid grains")
+      << solidMap("Initial Solid IFA", "0.5236", "rad", 0, 1.5, "internal friction angle phi of the solids")
+      << solidMap("Initial Solid Rocksize", "0.01", "m", 1e-6, 100, "representative grain or block size d")
+      << solidMap("Initial Cohesion", "0", "kPa", 0, 1e6, "cohesion c (reduces the lateral pressure, Bell)")
       << flag("Bed Friction Equals IFA", "1", "bed friction angle delta = internal friction angle phi")
-      << map("Bed Friction Angle", "0.5236", "rad", 0, 1.5, "bed friction angle delta (when not equal to IFA)")
+      << solidMap("Bed Friction Angle", "0.5236", "rad", 0, 1.5, "bed friction angle delta (when not equal to IFA)")
       << choice("Earth Pressure", {"savage-hutter", "constant"}, "savage-hutter",
                 "lateral earth-pressure coefficient: active/passive from phi and delta, or constant")
       << real("Earth Pressure Coefficient", "1", "-", 0.01, 100, "K when Earth Pressure=constant")
@@ -135,8 +156,8 @@ void addSolidKeys(KeyRegistry& r) {
 void addParticleKeys(KeyRegistry& r) {
   Section(r, "Particles")
       << flag("Use Material Point Method", "0", "structured solids as elasto-plastic particles (hybrid mode)")
-      << map("Structured Fraction", "1", "-", 0, 1, "f_sc: share of the initial solids that is structured (particles)")
-      << map("Confined Fluid Fraction", "1", "-", 0, 1, "f_fc: share of the initial fluid held in the structured solids")
+      << particleMap("Structured Fraction", "1", "-", 0, 1, "f_sc: share of the initial solids that is structured (particles)")
+      << particleMap("Confined Fluid Fraction", "1", "-", 0, 1, "f_fc: share of the initial fluid held in the structured solids")
       << real("Elastic Modulus", "1e7", "Pa", 1e3, 1e13, "Young's modulus E of the structured material")
       << real("Poisson Ratio", "0.3", "-", 0, 0.49, "Poisson ratio nu (used when Shear Modulus is 0)")
       << real("Shear Modulus", "0", "Pa", 0, 1e13, "shear modulus G; > 0 sets nu = E / (2 G) - 1")

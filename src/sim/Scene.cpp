@@ -2,8 +2,11 @@
 
 #include <cmath>
 #include <sstream>
+#include <utility>
 
 #include "core/Error.hpp"
+#include "sim/RunMemory.hpp"
+#include "sim/RunTimes.hpp"
 
 namespace talus::sim {
 namespace {
@@ -14,11 +17,27 @@ std::string cellText(const Grid& g, int i, int j) {
   return o.str();
 }
 
-/// Reads a map key (a raster on the DEM's grid, or a number) as values times the multiplier.
-/// Cells inside the DEM's domain must hold finite data within the key's declared range.
-std::vector<double> loadMap(const io::RunConfig& cfg, const std::string& key, const Raster& dem,
-                            const std::string& demPath) {
-  const io::KeySpec* spec = cfg.registry().find(key);
+/// Reads the map keys of a scene on the DEM's grid, collecting the warnings of their rasters.
+class MapLoader {
+ public:
+  MapLoader(const io::RunConfig& cfg, const Raster& dem, std::string demPath, std::vector<std::string>& warnings)
+      : cfg_(cfg), dem_(dem), demPath_(std::move(demPath)), warnings_(warnings) {}
+
+  /// A map key (a raster on the DEM's grid, or a number) as values times the multiplier. Cells
+  /// inside the DEM's domain must hold finite data within the key's declared range. With a
+  /// material name ("initial water"), what the raster holds on the DEM's nodata cells (and is
+  /// therefore dropped) is reported as a warning with its cell count and volume.
+  std::vector<double> operator()(const std::string& key, const char* material = nullptr) const;
+
+ private:
+  const io::RunConfig& cfg_;
+  const Raster& dem_;
+  std::string demPath_;
+  std::vector<std::string>& warnings_;
+};
+
+std::vector<double> MapLoader::operator()(const std::string& key, const char* material) const {
+  const io::KeySpec* spec = cfg_.registry().find(key);
   const double lo = spec ? spec->min : -HUGE_VAL, hi = spec ? spec->max : HUGE_VAL;
   const std::string unit = spec && !spec->unit.empty() ? " " + spec->unit : "";
   auto range = [&] {
@@ -26,30 +45,49 @@ std::vector<double> loadMap(const io::RunConfig& cfg, const std::string& key, co
     o << "[" << lo << ", " << hi << "]" << unit;
     return o.str();
   };
-  const io::MapValue mv = cfg.map(key);
-  const std::size_t n = dem.grid.cells();
+  const io::MapValue mv = cfg_.map(key);
+  const std::size_t n = dem_.grid.cells();
   if (!mv.isFile) {
     const double v = mv.constant * mv.multiplier;
     if (!std::isfinite(v) || v < lo || v > hi)
-      throw InputError(cfg.origin(key) + ": key '" + key + "': value " + std::to_string(v) + " is outside " + range());
+      throw InputError(cfg_.origin(key) + ": key '" + key + "': value " + std::to_string(v) + " is outside " + range());
     return std::vector<double>(n, v);
   }
-  const Raster r = io::readRaster(mv.file);
-  io::requireSameGrid(dem, demPath, r, mv.file);
+  io::RasterReadOptions options;
+  options.convertLinearUnits = cfg_.flag("Convert Raster Units");
+  options.valuesAreLengths = spec && spec->unit == "m";
+  const Raster r = io::readRaster(mv.file, options, &warnings_);
+  io::requireSameGrid(dem_, demPath_, r, mv.file);
   std::vector<double> out(n, 0.0);
-  for (int j = 0; j < dem.grid.ny; ++j)
-    for (int i = 0; i < dem.grid.nx; ++i) {
-      const std::size_t k = dem.grid.index(i, j);
-      if (!dem.valid[k]) continue;
+  std::size_t droppedCells = 0;
+  double droppedVolume = 0;
+  for (int j = 0; j < dem_.grid.ny; ++j)
+    for (int i = 0; i < dem_.grid.nx; ++i) {
+      const std::size_t k = dem_.grid.index(i, j);
+      if (!dem_.valid[k]) {
+        const double v = r.values[k] * mv.multiplier;
+        if (material != nullptr && r.valid[k] && v > 0) {
+          ++droppedCells;
+          droppedVolume += v * dem_.grid.dx * dem_.grid.dx;
+        }
+        continue;
+      }
       if (!r.valid[k])
-        throw InputError("map '" + mv.file + "' (key '" + key + "') has no data at " + cellText(dem.grid, i, j) +
+        throw InputError("map '" + mv.file + "' (key '" + key + "') has no data at " + cellText(dem_.grid, i, j) +
                          ", which is inside the DEM's domain");
       const double v = r.values[k] * mv.multiplier;
       if (v < lo || v > hi)
         throw InputError("map '" + mv.file + "' (key '" + key + "') has value " + std::to_string(v) + " at " +
-                         cellText(dem.grid, i, j) + ", outside the valid range " + range());
+                         cellText(dem_.grid, i, j) + ", outside the valid range " + range());
       out[k] = v;
     }
+  if (droppedCells > 0) {
+    std::ostringstream o;
+    o.precision(6);
+    o << droppedVolume << " m^3 of " << material << " in '" << mv.file << "' (key '" << key << "') lie on "
+      << droppedCells << " cells where the DEM '" << demPath_ << "' has no data, and are dropped";
+    warnings_.push_back(o.str());
+  }
   return out;
 }
 
@@ -60,7 +98,11 @@ Scene loadScene(const io::RunConfig& cfg) {
   s.runFile = cfg.sourceName();
   const io::MapValue demKey = cfg.map("DEM");
   if (!demKey.isFile) throw InputError(cfg.origin("DEM") + ": key 'DEM': the DEM must be a raster file, not a number");
-  s.dem = io::readRaster(demKey.file);
+  for (const std::string& w : cfg.warnings()) s.warnings.push_back(w);
+  io::RasterReadOptions demOptions;
+  demOptions.convertLinearUnits = cfg.flag("Convert Raster Units");
+  demOptions.valuesAreLengths = true;
+  s.dem = io::readRaster(demKey.file, demOptions, &s.warnings);
   if (demKey.multiplier != 1.0)
     for (double& v : s.dem.values) v *= demKey.multiplier;
   // Elevations must be finite and representable in single precision (the kernels may run in float).
@@ -76,23 +118,24 @@ Scene loadScene(const io::RunConfig& cfg) {
   if (inside == 0) throw InputError("DEM '" + demKey.file + "' has no valid cells");
 
   const Grid& g = s.dem.grid;
+  const MapLoader loadMap(cfg, s.dem, demKey.file, s.warnings);
   s.flow.mask = s.dem.valid;
   s.flow.bed = s.dem.values;
-  s.flow.manning = loadMap(cfg, "Manning", s.dem, demKey.file);
+  s.flow.manning = loadMap("Manning");
   if (cfg.flag("Include Initial Water"))
-    s.flow.h = loadMap(cfg, "Initial Fluid Height", s.dem, demKey.file);
+    s.flow.h = loadMap("Initial Fluid Height", "initial water");
   else
     s.flow.h.assign(g.cells(), 0.0);
 
   flow::FlowSettings& f = s.settings;
   s.particles.enabled = cfg.flag("Use Material Point Method");
   if (cfg.flag("Include Initial Solids")) {
-    std::vector<double> hs = loadMap(cfg, "Initial Solid Height", s.dem, demKey.file);
-    std::vector<double> rhoS = loadMap(cfg, "Initial Solid Density", s.dem, demKey.file);
-    std::vector<double> phi = loadMap(cfg, "Initial Solid IFA", s.dem, demKey.file);
-    std::vector<double> cohesion = loadMap(cfg, "Initial Cohesion", s.dem, demKey.file);
+    std::vector<double> hs = loadMap("Initial Solid Height", "initial solids");
+    std::vector<double> rhoS = loadMap("Initial Solid Density");
+    std::vector<double> phi = loadMap("Initial Solid IFA");
+    std::vector<double> cohesion = loadMap("Initial Cohesion");
     for (double& c : cohesion) c *= 1000.0;  // kPa (OpenLISEM Hazard) -> Pa
-    std::vector<double> delta = loadMap(cfg, "Bed Friction Angle", s.dem, demKey.file);
+    std::vector<double> delta = loadMap("Bed Friction Angle");
     if (s.particles.enabled) {
       // Hybrid mode: the structured solids (with the fluid they hold) become particles; the grid
       // keeps the unstructured solids and the free fluid.
@@ -106,9 +149,9 @@ Scene loadScene(const io::RunConfig& cfg) {
       m.phi = phi;
       m.delta = cfg.flag("Bed Friction Equals IFA") ? phi : delta;
       m.cohesion = cohesion;
-      m.structured = loadMap(cfg, "Structured Fraction", s.dem, demKey.file);
-      m.confined = loadMap(cfg, "Confined Fluid Fraction", s.dem, demKey.file);
-      m.grain = loadMap(cfg, "Initial Solid Rocksize", s.dem, demKey.file);
+      m.structured = loadMap("Structured Fraction");
+      m.confined = loadMap("Confined Fluid Fraction");
+      m.grain = loadMap("Initial Solid Rocksize");
       s.particles.spacing.volume = cfg.real("Particle Fractional Dimension");
       s.particles.spacing.perCell = cfg.real("Particles Per Cell");
       try {
@@ -133,7 +176,7 @@ Scene loadScene(const io::RunConfig& cfg) {
       s.flow.hs = std::move(hs);
       s.flow.rhoS = std::move(rhoS);
       s.flow.phi = std::move(phi);
-      s.flow.grain = loadMap(cfg, "Initial Solid Rocksize", s.dem, demKey.file);
+      s.flow.grain = loadMap("Initial Solid Rocksize");
       s.flow.cohesion = std::move(cohesion);
       s.flow.delta = std::move(delta);
     }
@@ -197,18 +240,36 @@ Scene loadScene(const io::RunConfig& cfg) {
   f.skipDryTiles = cfg.flag("Skip Dry Tiles");
   f.depthPressure = flow::parseDepthPressure(cfg.choice("Depth Pressure"));
 
-  s.startTime = 60.0 * cfg.real("Start Time");
-  s.endTime = 60.0 * cfg.real("End Time");
   s.reportInterval = cfg.real("Timestep");
+  s.startTime = 60.0 * cfg.real("Start Time");
+  // Report times are start + k * Timestep: the span to the end is what must land on one.
+  s.endTime = s.startTime + minutesOnReportGrid(cfg.real("End Time") - cfg.real("Start Time"), s.reportInterval);
   s.restFraction = cfg.real("Stop At Rest Fraction");
   s.precision = cfg.choice("Precision");
   s.device = cfg.text("Device");
   s.outputDir = cfg.directory("Output Directory");
   s.format = cfg.choice("Output Format") == "pcraster" ? io::RasterFormat::PCRaster : io::RasterFormat::GeoTiff;
   s.reportSeries = cfg.flag("Report Series");
-  s.checkpointInterval = 60.0 * cfg.real("Checkpoint Interval");
+  s.checkpointInterval = minutesOnReportGrid(cfg.real("Checkpoint Interval"), s.reportInterval);
   s.checkpointWallInterval = 60.0 * cfg.real("Checkpoint Wall Interval");
+  requireMemoryForRun(s, demKey.file);
   return s;
+}
+
+void requireMaterial(const Scene& s, const io::RunConfig& cfg) {
+  const auto anyInside = [&](const std::vector<double>& v) {
+    for (std::size_t k = 0; k < v.size(); ++k)
+      if (s.dem.valid[k] && v[k] > 0) return true;
+    return false;
+  };
+  if (anyInside(s.flow.h) || anyInside(s.flow.hs) || !s.particles.seeded.x.empty()) return;
+  auto state = [&](const char* process, const char* map) {
+    return cfg.flag(process) ? std::string("'") + map + "' is 0 in every cell of the DEM's domain"
+                             : std::string("'") + process + "' is 0";
+  };
+  throw InputError(cfg.sourceName() + ": the scene has nothing to move: no initial water (" +
+                   state("Include Initial Water", "Initial Fluid Height") + ") and no initial solids (" +
+                   state("Include Initial Solids", "Initial Solid Height") + ")");
 }
 
 }  // namespace talus::sim

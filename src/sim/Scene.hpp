@@ -2,6 +2,7 @@
 // device work starts (grids match the DEM, no holes or NaN inside the domain, no negative thickness).
 #pragma once
 #include <string>
+#include <vector>
 
 #include "core/Raster.hpp"
 #include "flow/FlowSettings.hpp"
@@ -29,9 +30,17 @@ struct Scene {
   bool reportSeries = true;
   double checkpointInterval = 0;      ///< simulated seconds between checkpoints (0: none)
   double checkpointWallInterval = 0;  ///< wall seconds between checkpoints (0: none)
+  /// What loading noticed but did not refuse (maps of processes that are off, extra raster bands,
+  /// material dropped on the DEM's nodata cells), one sentence each, for the user to see.
+  std::vector<std::string> warnings;
 };
 
 /// Builds the scene of a parsed run-file. Throws InputError naming the file, key or cell at fault.
 Scene loadScene(const io::RunConfig& config);
+
+/// Throws talus::InputError when the scene holds nothing that could move: no water, no solids and
+/// no particles inside the DEM's domain. The message names the switches and maps that left it
+/// empty (an empty run would report "completed" with all-zero maps).
+void requireMaterial(const Scene& scene, const io::RunConfig& config);
 
 }  // namespace talus::sim

@@ -230,7 +230,9 @@ Progress Simulation::stepOnce() {
   const double ckInterval = scene_.checkpointInterval;
   const bool simDue = solver_->time() >= nextCheckpoint_ * (1 - 1e-15);
   const bool wallDue = scene_.checkpointWallInterval > 0 && wall() - lastCheckpointWall_ >= scene_.checkpointWallInterval;
-  if ((simDue || wallDue) && solver_->time() < tEnd * (1 - 1e-15)) {
+  // A checkpoint due by simulated time is written at the end too (it lets a later run continue
+  // with a longer End Time); the wall-clock one is not needed there, the run is over.
+  if (simDue || (wallDue && solver_->time() < tEnd * (1 - 1e-15))) {
     guardedWrite([&] { writeCheckpoint(wall()); });
     lastCheckpointWall_ = wall();
   }

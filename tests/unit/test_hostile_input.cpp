@@ -52,6 +52,7 @@ using talus::io::RunConfig;
 using talus::sim::talusRunKeys;
 
 #include "support/CliRun.hpp"
+#include "support/ExpectInputError.hpp"
 
 namespace {
 
@@ -59,24 +60,8 @@ using talus::test::Outcome;
 using talus::test::shellQuote;
 using talus::test::slurp;
 
-bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
-
-/// Runs fn, expects an InputError whose message contains every one of parts; returns the message.
-std::string expectInputError(const std::function<void()>& fn, std::initializer_list<std::string> parts) {
-  try {
-    fn();
-  } catch (const InputError& e) {
-    const std::string what = e.what();
-    for (const std::string& part : parts)
-      EXPECT_TRUE(contains(what, part)) << "missing '" << part << "' in: " << what.substr(0, 2000);
-    return what;
-  } catch (const std::exception& e) {
-    ADD_FAILURE() << "expected talus::InputError, got another exception: " << e.what();
-    return "";
-  }
-  ADD_FAILURE() << "expected talus::InputError, nothing was thrown";
-  return "";
-}
+using talus::test::contains;
+using talus::test::expectInputError;
 
 /// A small georeferenced raster (12 x 10 cells of 2 m) filled by f(i, j).
 Raster gridRaster(const std::function<double(int, int)>& f) {
@@ -116,10 +101,12 @@ class HostileInput : public ::testing::Test {
     talus::io::writeRaster(p, r, talus::io::RasterFormat::GeoTiff, float64);
     return p;
   }
-  /// A tiny valid scene: dem.tif (a gentle slope) and the run-file `name` with `extra` appended.
+  /// A tiny valid scene: dem.tif (a gentle slope) and the run-file `name` with `extra` appended,
+  /// then a 1 cm film of water (a scene with nothing to move is refused).
   std::string writeScene(const std::string& extra, const std::string& name = "case.run") {
     writeMap("dem.tif", gridRaster([](int i, int) { return 10.0 + 0.1 * i; }));
-    return write(name, "[Talus run file]\nDEM=dem.tif\nEnd Time=0.01\nTimestep=60\n" + extra);
+    return write(name, "[Talus run file]\nDEM=dem.tif\nEnd Time=0.01\nTimestep=60\n" + extra +
+                           "\nInclude Initial Water=1\nInitial Fluid Height=0.01\n");
   }
   talus::sim::Scene loadScene(const std::string& runFile) {
     const RunConfig cfg = RunConfig::load(runFile, talusRunKeys());
@@ -271,7 +258,7 @@ TEST_F(HostileInput, MapPathThatIsADirectoryIsRefused) {
   writeMap("maps/dem.tif", gridRaster([](int, int) { return 1.0; }));
   // As a map key: the run-file parser names line, key and folder.
   const std::string msg = expectInputError(
-      [&] { RunConfig::fromText("Map Directory=maps\nDEM=dem.tif\nInitial Fluid Height=sub.tif\n", dir_.string(),
+      [&] { RunConfig::fromText("Map Directory=maps\nDEM=dem.tif\nInitial Fluid Height=sub.tif\nInclude Initial Water=1\n", dir_.string(),
                                 talusRunKeys(), "case.run"); },
       {"case.run:3", "key 'Initial Fluid Height'", path("maps/sub.tif"), "folder"});
   expectInputError([&] { RunConfig::fromText("DEM=.\n", dir_.string(), talusRunKeys(), "case.run"); },

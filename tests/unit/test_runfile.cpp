@@ -345,10 +345,10 @@ TEST_F(RunFile, AccessorsRejectUndeclaredKeysAndWrongTypes) {
 
 TEST_F(RunFile, RegistryIntegerKeysRulesAndTable) {
   KeyRegistry r;
-  KeySpec n{"Particle Count", KeyType::Integer, "10", "-", 0, 1000, {}, "particles", "Misc", false};
+  KeySpec n{"Particle Count", KeyType::Integer, "10", "-", 0, 1000, {}, "particles", "Misc", false, ""};
   r.add(n);
   EXPECT_THROW(r.add(n), std::logic_error);  // declared twice
-  EXPECT_THROW(r.add(KeySpec{"Bad", KeyType::Choice, "x", "", 0, 1, {"a"}, "", "", false}), std::logic_error);
+  EXPECT_THROW(r.add(KeySpec{"Bad", KeyType::Choice, "x", "", 0, 1, {"a"}, "", "", false, ""}), std::logic_error);
   const RunConfig c = RunConfig::fromText("particle count=20=2\n", dir(), r);
   EXPECT_EQ(c.integer("Particle Count"), 40);
   EXPECT_DOUBLE_EQ(c.real("Particle Count"), 40);

@@ -25,6 +25,7 @@
 #include "sim/RunKeys.hpp"
 #include "sim/Scene.hpp"
 #include "sim/Simulation.hpp"
+#include "support/ExpectInputError.hpp"
 
 namespace fs = std::filesystem;
 using talus::Grid;
@@ -48,20 +49,8 @@ const char* kUtm33Wkt =
 constexpr int kNx = 20, kNy = 16;
 constexpr double kX0 = 512000.0, kY0 = 5160000.0;
 
-bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
-
-/// Runs fn, expects an InputError whose message contains every one of parts; returns the message.
-std::string expectInputError(const std::function<void()>& fn, std::initializer_list<std::string> parts) {
-  try {
-    fn();
-  } catch (const InputError& e) {
-    const std::string what = e.what();
-    for (const std::string& part : parts) EXPECT_TRUE(contains(what, part)) << "missing '" << part << "' in: " << what;
-    return what;
-  }
-  ADD_FAILURE() << "expected talus::InputError";
-  return "";
-}
+using talus::test::contains;
+using talus::test::expectInputError;
 
 /// A raster on the scenes' georeferenced grid, filled by f(i, j).
 Raster gridRaster(const std::function<double(int, int)>& f, double dx = 2.0, int nx = kNx, int ny = kNy) {

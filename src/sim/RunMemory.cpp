@@ -1,0 +1,44 @@
+#include "sim/RunMemory.hpp"
+
+#include "core/Error.hpp"
+#include "core/Memory.hpp"
+
+namespace talus::sim {
+namespace {
+
+// Per-cell buffers of flow::FlowSolver, in reals (see its member list and FlowSolverDebris.cpp).
+constexpr int kWaterArrays = 15;     // bed, g_p, g_n, Manning, slope speed, h/qx/qy and their stage
+                                     // copies, outflow, h max, v max, arrival
+constexpr int kTwoPhaseArrays = 27;  // solid state at two stages (2 x 6), delta, cohesion, maxima (7),
+                                     // curvature (3), slope (2), outflow of the solids
+constexpr int kParticleBedArrays = 5;  // particle bed (3) and its impulse (2)
+constexpr int kHostOutputMaps = 4;     // h, qx, qy and the speed of a report, in double
+
+}  // namespace
+
+RunMemory estimateRunMemory(const Scene& scene) {
+  const double cells = static_cast<double>(scene.dem.grid.cells());
+  const double real = scene.precision == "double" ? 8.0 : 4.0;
+  RunMemory m;
+  m.deviceArrays = kWaterArrays + (scene.settings.twoPhase ? kTwoPhaseArrays : 0) +
+                   (scene.settings.particleBed ? kParticleBedArrays : 0);
+  const double maskBytes = scene.settings.twoPhase ? 3.0 : 1.0;  // domain mask, static-solid flags
+  m.deviceBytes = cells * (m.deviceArrays * real + maskBytes);
+  m.hostBytes = cells * kHostOutputMaps * 8.0;
+  return m;
+}
+
+void requireMemoryForRun(const Scene& scene, const std::string& demPath) {
+  const double available = static_cast<double>(availableMemoryBytes());
+  const RunMemory m = estimateRunMemory(scene);
+  if (available <= 0 || m.total() <= available) return;
+  const Grid& g = scene.dem.grid;
+  throw InputError("the grid of DEM '" + demPath + "' (" + std::to_string(g.nx) + "x" + std::to_string(g.ny) +
+                   " cells) needs about " + formatBytes(m.total()) + " for the run (" +
+                   std::to_string(m.deviceArrays) + " arrays of " + scene.precision + " a cell on the device, " +
+                   formatBytes(m.deviceBytes) + ", and " + formatBytes(m.hostBytes) +
+                   " of output maps), but only " + formatBytes(available) +
+                   " of memory is available; use a coarser DEM or a smaller extent");
+}
+
+}  // namespace talus::sim
