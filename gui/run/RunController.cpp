@@ -98,6 +98,9 @@ void RunController::onPrepared() {
                .arg(scene_->startTime)
                .arg(scene_->endTime)
                .arg(QString::fromStdString(config_->directory("Output Directory"))));
+  for (const std::string& w : scene_->warnings) emit log("warning: " + QString::fromStdString(w));
+  const std::string particleCost = sim_->particleCost();
+  if (!particleCost.empty()) emit log("particles: " + QString::fromStdString(particleCost));
   sim::RunControl::Callbacks cb;
   cb.onStep = [this](const sim::Progress& p) { onStep(p); };
   cb.onEnd = [this](const sim::RunOutcome& o) { onEnd(o); };

@@ -134,6 +134,8 @@ int runScene(int argc, char** argv) {
                  scene.dem.grid.dx,
                  mode == OutputMode::Resume ? (", resuming at t = " + std::to_string(sim.resumeTime()) + " s").c_str()
                                             : "");
+  const std::string particleCost = sim.particleCost();
+  if (!quiet && !particleCost.empty()) std::fprintf(stderr, "talus: particles: %s\n", particleCost.c_str());
   ProgressPrinter printer(quiet);
   const talus::sim::RunSummary s = sim.run([&](const talus::sim::Progress& p) { printer(p); });
   if (!quiet)

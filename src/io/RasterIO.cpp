@@ -364,7 +364,7 @@ void writeRaster(const std::string& path, const Raster& r, RasterFormat format, 
   if (folder.empty()) folder = ".";
   std::error_code ec;
   if (!fs::is_directory(folder, ec)) {
-    throw IoError("cannot write raster '" + path + "': folder '" + folder.string() +
+    throw InputError("cannot write raster '" + path + "': folder '" + folder.string() +
                      "' does not exist or is not a folder");
   }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 #include "core/Error.hpp"
@@ -17,6 +18,17 @@ void r2Point(uint64_t n, double s, double& u, double& v) {
   u -= std::floor(u);
   v -= std::floor(v);
 }
+
+namespace {
+
+[[noreturn]] void tooMany(double volume, std::size_t maxParticles) {
+  char text[160];
+  std::snprintf(text, sizeof text, "particle seeding: a particle volume of %.3g m^3 gives more than %zu particles",
+                volume, maxParticles);
+  throw InputError(text);
+}
+
+}  // namespace
 
 SeededParticles seedParticles(const Grid& grid, const SeedInput& in, const SeedSpacing& spacing,
                               std::size_t maxParticles) {
@@ -53,14 +65,10 @@ SeededParticles seedParticles(const Grid& grid, const SeedInput& in, const SeedS
   for (std::size_t k = 0; k < n; ++k) {
     if (!in.mask[k] || !(in.thickness[k] > 0)) continue;
     const double want = std::round(in.thickness[k] * area / vi);
-    if (want > static_cast<double>(maxParticles))
-      throw InputError("particle seeding: a particle volume of " + std::to_string(vi) + " m^3 gives more than " +
-                       std::to_string(maxParticles) + " particles");
+    if (want > static_cast<double>(maxParticles)) tooMany(vi, maxParticles);
     count[k] = std::max<std::size_t>(1, static_cast<std::size_t>(want));
     total += count[k];
-    if (total > maxParticles)
-      throw InputError("particle seeding: a particle volume of " + std::to_string(vi) + " m^3 gives more than " +
-                       std::to_string(maxParticles) + " particles");
+    if (total > maxParticles) tooMany(vi, maxParticles);
   }
   out.x.reserve(total);
   out.y.reserve(total);

@@ -69,14 +69,20 @@ OutputWriter::OutputWriter(const std::string& dir, const Raster& dem, io::Raster
                        "; wait for it to end or choose another folder");
     throw InputError("cannot lock output folder '" + dir_ + "': " + std::strerror(err));
   }
-  const std::string pid = std::to_string(::getpid()) + "\n";
-  if (::ftruncate(lockFd_, 0) != 0 || ::write(lockFd_, pid.data(), pid.size()) < 0) {
-    // The pid is only for the message a second run prints; the lock itself holds.
+  try {
+    const std::string pid = std::to_string(::getpid()) + "\n";
+    if (::ftruncate(lockFd_, 0) != 0 || ::write(lockFd_, pid.data(), pid.size()) < 0) {
+      // The pid is only for the message a second run prints; the lock itself holds.
+    }
+    const bool holdsRun = fs::exists(path("summary.json"), ec) || fs::exists(path("diagnostics.csv"), ec) ||
+                          fs::exists(path(kManifest), ec);
+    if (!overwrite && !resume && holdsRun)
+      throw InputError("output folder '" + dir_ + "' already holds a run; choose another folder or pass --overwrite");
+  } catch (...) {
+    ::close(lockFd_);  // a constructor that throws runs no destructor: release the lock here
+    lockFd_ = -1;
+    throw;
   }
-  const bool holdsRun = fs::exists(path("summary.json"), ec) || fs::exists(path("diagnostics.csv"), ec) ||
-                        fs::exists(path(kManifest), ec);
-  if (!overwrite && !resume && holdsRun)
-    throw InputError("output folder '" + dir_ + "' already holds a run; choose another folder or pass --overwrite");
 }
 
 OutputWriter::~OutputWriter() {

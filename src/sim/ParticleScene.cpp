@@ -4,7 +4,7 @@
 
 namespace talus::sim {
 
-void splitStructured(const Grid& grid, InitialMaterial& m, ParticleScene& p) {
+void splitStructured(const Grid& grid, InitialMaterial& m, ParticleScene& p, std::size_t maxParticles) {
   const std::size_t n = grid.cells();
   particles::SeedInput in;
   in.mask = m.mask;
@@ -23,7 +23,7 @@ void splitStructured(const Grid& grid, InitialMaterial& m, ParticleScene& p) {
     m.hs[k] -= s;
     m.hf[k] -= f;
   }
-  p.seeded = particles::seedParticles(grid, in, p.spacing);
+  p.seeded = particles::seedParticles(grid, in, p.spacing, maxParticles);
   const std::size_t np = p.seeded.size();
   std::vector<double> perCell(n, 0.0);
   for (uint32_t k : p.seeded.cell) perCell[k] += 1;

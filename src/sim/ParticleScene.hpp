@@ -42,6 +42,6 @@ struct InitialMaterial {
 /// structured solids with the fluid they hold), and removes it from `hs` and `hf`, which keep the
 /// unstructured solids and the free fluid for the grid. Each particle takes the friction angles
 /// and cohesion of its seeding cell.
-void splitStructured(const Grid& grid, InitialMaterial& m, ParticleScene& p);
+void splitStructured(const Grid& grid, InitialMaterial& m, ParticleScene& p, std::size_t maxParticles);
 
 }  // namespace talus::sim

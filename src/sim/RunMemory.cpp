@@ -1,5 +1,7 @@
 #include "sim/RunMemory.hpp"
 
+#include <algorithm>
+
 #include "core/Error.hpp"
 #include "core/Memory.hpp"
 
@@ -39,6 +41,23 @@ void requireMemoryForRun(const Scene& scene, const std::string& demPath) {
                    formatBytes(m.deviceBytes) + ", and " + formatBytes(m.hostBytes) +
                    " of output maps), but only " + formatBytes(available) +
                    " of memory is available; use a coarser DEM or a smaller extent");
+}
+
+double bytesPerParticle(const std::string& precision) {
+  const double real = precision == "double" ? 8.0 : 4.0;
+  // Device: the solver's 31 per-particle fields, 5 totals and 3 gradient-correction components
+  // (particles/ParticleSolver.cpp) and the neighbour sort's keys, values and scratch (4 words).
+  const double device = 39 * real + 16;
+  // Host, at the peak of a report: the seeding and material arrays (12 doubles), the downloaded
+  // state (30 doubles), a checkpoint's copy (22 reals) and a layer's attribute columns (15 doubles).
+  const double host = (12 + 30 + 15) * 8.0 + 22 * real;
+  return device + host;
+}
+
+std::size_t particleLimit(const std::string& precision) {
+  const double available = static_cast<double>(availableMemoryBytes());
+  if (!(available > 0)) return std::size_t{1} << 28;
+  return static_cast<std::size_t>(std::max(1.0, available / bytesPerParticle(precision)));
 }
 
 }  // namespace talus::sim

@@ -2,6 +2,7 @@
 // so that a grid too large for the machine is refused with the numbers instead of ending in
 // std::bad_alloc (or the kernel's OOM killer) after minutes of loading.
 #pragma once
+#include <cstddef>
 #include <string>
 
 #include "sim/Scene.hpp"
@@ -25,5 +26,11 @@ RunMemory estimateRunMemory(const Scene& scene);
 /// (core/Memory.hpp), naming the grid, the estimate and what is available. Does nothing when the
 /// available memory cannot be read.
 void requireMemoryForRun(const Scene& scene, const std::string& demPath);
+
+/// Bytes one MPM particle takes over a run, device and host together (see the definition).
+double bytesPerParticle(const std::string& precision);
+/// The most particles the memory this process can still take holds (the seeding refuses more, by
+/// count, before allocating them); a fixed 2^28 when the available memory cannot be read.
+std::size_t particleLimit(const std::string& precision);
 
 }  // namespace talus::sim

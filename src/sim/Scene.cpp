@@ -1,10 +1,12 @@
 #include "sim/Scene.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <utility>
 
 #include "core/Error.hpp"
+#include "core/Memory.hpp"
 #include "sim/RunMemory.hpp"
 #include "sim/RunTimes.hpp"
 
@@ -120,7 +122,17 @@ Scene loadScene(const io::RunConfig& cfg) {
   const Grid& g = s.dem.grid;
   const MapLoader loadMap(cfg, s.dem, demKey.file, s.warnings);
   s.flow.mask = s.dem.valid;
-  s.flow.bed = s.dem.values;
+  // The solvers see elevations above a local origin, the lowest valid DEM cell: the water surface
+  // b + h is formed in the device's precision, and in float an altitude of 8800 m leaves 0.5 mm
+  // of resolution, which is the thickness of the thin films a front is made of. Above the origin
+  // the resolution follows the scene's relief instead. Every force uses differences of b, so the
+  // physics is unchanged; the maps keep their true elevations (s.dem).
+  s.elevationOrigin = HUGE_VAL;
+  for (std::size_t k = 0; k < s.dem.values.size(); ++k)
+    if (s.dem.valid[k]) s.elevationOrigin = std::min(s.elevationOrigin, s.dem.values[k]);
+  std::vector<double> localBed = s.dem.values;
+  for (double& z : localBed) z -= s.elevationOrigin;
+  s.flow.bed = localBed;
   s.flow.manning = loadMap("Manning");
   if (cfg.flag("Include Initial Water"))
     s.flow.h = loadMap("Initial Fluid Height", "initial water");
@@ -141,7 +153,7 @@ Scene loadScene(const io::RunConfig& cfg) {
       // keeps the unstructured solids and the free fluid.
       InitialMaterial m;
       m.mask = s.dem.valid;
-      m.bed = s.dem.values;
+      m.bed = localBed;
       m.hs = hs;
       m.hf = s.flow.h;
       m.rhoS = rhoS;
@@ -155,11 +167,14 @@ Scene loadScene(const io::RunConfig& cfg) {
       s.particles.spacing.volume = cfg.real("Particle Fractional Dimension");
       s.particles.spacing.perCell = cfg.real("Particles Per Cell");
       try {
-        splitStructured(s.dem.grid, m, s.particles);
+        splitStructured(s.dem.grid, m, s.particles, particleLimit(cfg.choice("Precision")));
       } catch (const InputError& e) {  // name the keys that set the particle count
-        throw InputError(cfg.origin("Particles Per Cell") + ": keys 'Particle Fractional Dimension' (" +
+        const bool byVolume = s.particles.spacing.volume > 0;
+        throw InputError(cfg.origin(byVolume ? "Particle Fractional Dimension" : "Particles Per Cell") + ": keys 'Particle Fractional Dimension' (" +
                          io::formatNumber(s.particles.spacing.volume) + " m^3) / 'Particles Per Cell' (" +
-                         io::formatNumber(s.particles.spacing.perCell) + "): " + e.what());
+                         io::formatNumber(s.particles.spacing.perCell) + "): " + e.what() +
+                         " (the memory this run can still take holds " + std::to_string(particleLimit(cfg.choice("Precision"))) +
+                         " particles of about " + formatBytes(bytesPerParticle(cfg.choice("Precision"))) + " each)");
       }
       hs = m.hs;
       s.flow.h = m.hf;
@@ -206,7 +221,7 @@ Scene loadScene(const io::RunConfig& cfg) {
     ps.kConst = cfg.real("Earth Pressure Coefficient");
     if (s.particles.terrain.mask.empty()) {  // no solids at all: a run without particles
       s.particles.terrain.mask = s.dem.valid;
-      s.particles.terrain.bed = s.dem.values;
+      s.particles.terrain.bed = localBed;
     }
   }
   flow::DebrisSettings& d = f.debris;

@@ -24,6 +24,8 @@ struct Scene {
   double reportInterval = 10;    ///< [s]
   double restFraction = 0;       ///< end once E_kin < restFraction * peak E_kin (0: off)
   std::string precision = "float";
+  /// The solvers' elevations are DEM - elevationOrigin (the lowest valid DEM cell) [m]: see flow.bed.
+  double elevationOrigin = 0;
   std::string device;            ///< device selector ("" = automatic)
   std::string outputDir;         ///< absolute
   io::RasterFormat format = io::RasterFormat::GeoTiff;

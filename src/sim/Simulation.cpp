@@ -146,6 +146,19 @@ void Simulation::writeCheckpoint(double wallSeconds) {
   ++checkpoints_;
 }
 
+std::string Simulation::particleCost() {
+  if (!particles_) return "";
+  particles::ParticleSolver& p = particles_->solver();
+  const double sub = p.stableSubStep();
+  const double count = static_cast<double>(particles_->count());
+  std::ostringstream o;
+  o.precision(3);
+  o << particles_->count() << " particles, sub-step " << sub << " s: about " << (sub > 0 ? count / sub : 0.0)
+    << " particle-updates per simulated second (" << (sub > 0 ? (scene_.endTime - solver_->time()) / sub : 0.0)
+    << " sub-steps to the end time)";
+  return o.str();
+}
+
 double Simulation::wall() const {
   return wallBefore_ + std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
 }
@@ -358,6 +371,12 @@ std::string Simulation::summaryJson(const RunSummary& s, Ending ending) const {
   o << "{\n  \"talus_version\": \"0.1.0\",\n  \"run_file\": \"" << jsonEscape(scene_.runFile) << "\",\n"
     << "  \"status\": \"" << status << "\",\n";
   if (failed) o << "  \"failure\": \"" << jsonEscape(failure_) << "\",\n";
+  if (!scene_.warnings.empty()) {  // what the scene's loading warned about (dropped material, bands, ...)
+    o << "  \"warnings\": [";
+    for (std::size_t w = 0; w < scene_.warnings.size(); ++w)
+      o << (w ? ", " : "") << "\"" << jsonEscape(scene_.warnings[w]) << "\"";
+    o << "],\n";
+  }
   if (atRest_)
     o << "  \"ended_at_rest\": \"kinetic energy below " << scene_.restFraction << " of its peak "
       << peakKinetic_ << " J\",\n";

@@ -82,6 +82,9 @@ class Simulation {
   flow::FlowSolver& solver() { return *solver_; }
   /// Simulated time the run starts (or resumes) from [s].
   double resumeTime() const { return solver_->time(); }
+  /// The particles' cost, for the user to see before the run starts: count, sub-step and
+  /// particle-updates per simulated second ("" without particles).
+  std::string particleCost();
 
  private:
   void writeReport();

@@ -6,7 +6,9 @@
 // viscous rate against the CFL condition).
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <sstream>
 #include <string>
@@ -50,6 +52,7 @@ SweepCount sweepRangeEnds(const std::string& runFile, const fs::path& out, int s
       if (!std::isfinite(end)) continue;
       const std::string assignment = k.name + "=" + talus::io::formatNumber(end);
       ++c.tried;
+      const auto start = std::chrono::steady_clock::now();
       try {
         talus::io::RunConfig cfg = talus::io::RunConfig::load(runFile, keys);
         cfg.set(assignment);
@@ -63,6 +66,11 @@ SweepCount sweepRangeEnds(const std::string& runFile, const fs::path& out, int s
         ++c.refused;  // a clear refusal (a rule between keys, a derived quantity out of range)
       } catch (const std::exception& e) {
         failures << assignment << ": " << e.what() << "\n";
+      }
+      const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      if (seconds > 5) {
+        std::printf("  %s took %.1f s\n", assignment.c_str(), seconds);
+        std::fflush(stdout);
       }
     }
   }
