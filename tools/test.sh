@@ -31,6 +31,8 @@ if command -v clinfo >/dev/null 2>&1; then
 fi
 
 rc=0
+# Kernel sources compile without warnings in every variant (tools/check_kernels.sh).
+bash tools/check_kernels.sh || rc=$?
 ctest --test-dir "$build_dir" --output-on-failure --no-tests=error --timeout 900 \
   -j "${TALUS_TEST_JOBS:-1}" -L 'unit|kernels|verification|stress' || rc=$?
 

@@ -427,7 +427,11 @@ __kernel void debris_stage(__constant const FlowParams* p, __constant const Debr
     const real f = qn <= fric ? (real)0 : (real)1 - fric / qn;
     qs[0] = hsn * ucx + f * rx;
     qs[1] = hsn * ucy + f * ry;
+#if DEBRIS_OBSTACLE
     locked = f == (real)0 && ucx == (real)0 && ucy == (real)0;
+#else
+    locked = f == (real)0;  // no particle bed: the solids' reference velocity is zero
+#endif
   }
   if (dp->drag_law != DRAG_OFF && hsn > p->h_dry && hfn > p->h_dry)
     drag_relax(dp, mn, hsn, hfn, qs, qf, ds, locked);

@@ -101,6 +101,13 @@ void Program::buildFromSource(const std::string& source) {
       << ")\n  options: " << options_ << "\n  build log:\n" << buildLog(program_, device);
     throw ComputeError(o.str());
   }
+  // The device compiler's warnings, with their text: some drivers (PoCL) print only a count
+  // ("2 warnings generated.") themselves. Our kernels build without warnings (the kernel tests check
+  // every variant), so any text here is news for whoever reads the log.
+  const std::string log = buildLog(program_, device);
+  if (log.find("warning") != std::string::npos)
+    std::fprintf(stderr, "talus: device compiler warnings in kernels/%s (options %s):\n%s\n", file_.c_str(),
+                 options_.c_str(), log.c_str());
 }
 
 void Program::saveBinary(const std::string& path) const {

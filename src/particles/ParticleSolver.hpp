@@ -126,6 +126,8 @@ class ParticleSolver {
   /// g_n per terrain cell [m/s^2] (host copy of what the kernels use).
   const std::vector<double>& gn() const { return gnHost_; }
   double smoothingLength() const { return h_; }
+  /// Mean particle spacing of the seeding [m].
+  double meanSpacing() const { return spacing_; }
   double time() const { return time_; }
 
  private:

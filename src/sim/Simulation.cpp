@@ -153,9 +153,12 @@ std::string Simulation::particleCost() {
   const double count = static_cast<double>(particles_->count());
   std::ostringstream o;
   o.precision(3);
-  o << particles_->count() << " particles, sub-step " << sub << " s: about " << (sub > 0 ? count / sub : 0.0)
-    << " particle-updates per simulated second (" << (sub > 0 ? (scene_.endTime - solver_->time()) / sub : 0.0)
-    << " sub-steps to the end time)";
+  // Neighbours within the kernel's support (radius 2h) at the seeding's spacing: the cost of each
+  // particle-update grows with them.
+  const double support = 2 * p.smoothingLength() / p.meanSpacing();
+  o << particles_->count() << " particles with about " << 3.14159 * support * support << " neighbours each, sub-step "
+    << sub << " s: about " << (sub > 0 ? count / sub : 0.0) << " particle-updates per simulated second ("
+    << (sub > 0 ? (scene_.endTime - solver_->time()) / sub : 0.0) << " sub-steps to the end time)";
   return o.str();
 }
 
