@@ -23,16 +23,6 @@ constexpr const char* kCsvHeader =
 double totalVolume(const flow::FlowDiagnostics& d) { return d.volume + d.volumeSolid; }
 double totalOutflow(const flow::FlowDiagnostics& d) { return d.outflow + d.outflowSolid; }
 
-std::string jsonEscape(const std::string& s) {
-  std::string o;
-  for (char c : s) {
-    if (c == '"' || c == '\\') o += '\\';
-    if (static_cast<unsigned char>(c) < 0x20) continue;
-    o += c;
-  }
-  return o;
-}
-
 }  // namespace
 
 Simulation::Simulation(const Scene& scene, const io::RunConfig& config, const std::string& outDir, OutputMode mode)
@@ -55,6 +45,11 @@ Simulation::Simulation(const Scene& scene, const io::RunConfig& config, const st
   }
   for (uint8_t v : scene.dem.valid) domainCells_ += v;
   initialVolume_ = totalVolume(solver_->diagnostics());
+  {
+    double fluid = 0;
+    for (double h : scene.flow.h) fluid += std::max(h, 0.0);
+    fluidSeries_ = !solver_->twoPhase() || fluid > 0 || (scene.particles.enabled && !scene.particles.seeded.x.empty());
+  }
   {
     // Energy accounting of the grid phases (two-phase model): at the initial state, also on resume
     // (the solver holds the scene's initial state until the checkpoint is restored).
@@ -97,35 +92,6 @@ Simulation::Simulation(const Scene& scene, const io::RunConfig& config, const st
   seriesIndex_ = c.seriesIndex;
   out_->prepare();
   out_->truncateDiagnostics(kCsvHeader, steps_);
-}
-
-void Simulation::writeReport() {
-  const int index = reportIndex_++;
-  if (!scene_.reportSeries) return;
-  char hName[64], vName[64];
-  std::snprintf(hName, sizeof hName, "series/hf_%04d", index);
-  std::snprintf(vName, sizeof vName, "series/vf_%04d", index);
-  const std::vector<double> h = solver_->h(), qx = solver_->qx(), qy = solver_->qy();
-  std::vector<double> v(h.size(), 0.0);
-  for (std::size_t k = 0; k < h.size(); ++k)
-    if (h[k] > scene_.settings.hDry) v[k] = std::hypot(qx[k], qy[k]) / h[k];
-  out_->writeMap(hName, h);
-  out_->writeMap(vName, v);
-  if (particles_) {
-    char pName[64];
-    std::snprintf(pName, sizeof pName, "particles/particles_%04d.gpkg", index);
-    particles_->writeLayer(out_->claim(pName));
-  }
-  if (solver_->twoPhase()) {
-    char sName[64];
-    std::snprintf(sName, sizeof sName, "series/hs_%04d", index);
-    out_->writeMap(sName, solver_->hs());
-  }
-  std::ostringstream line;
-  line.precision(12);
-  line << index << "," << solver_->time() << "," << hName << "," << vName << "\n";
-  seriesIndex_ += line.str();
-  out_->writeText("series/index.csv", seriesIndex_);
 }
 
 void Simulation::writeCheckpoint(double wallSeconds) {
@@ -296,114 +262,6 @@ RunSummary Simulation::finalize(Ending ending) {
   s.checkpoints = checkpoints_;
   writeFinal(s, ending);
   return s;
-}
-
-void Simulation::attemptWrite(const std::function<void()>& write, std::string& firstError) {
-  try {
-    write();
-  } catch (const IoError& e) {
-    if (firstError.empty()) firstError = e.what();
-  }
-}
-
-void Simulation::writeFinal(const RunSummary& s, Ending ending) {
-  const bool failed = ending == Ending::Failed;
-  // Each map is attempted even when one before it failed (a full disk may still take a small
-  // file); the summary then reports the run as failed with the first reason.
-  std::string ioError;
-  auto attempt = [&](const std::function<void()>& write) { attemptWrite(write, ioError); };
-  // On failure the maxima and arrival so far are still written; the final state may hold NaN.
-  const double never = -1.0;
-  if (!failed) attempt([&] { out_->writeMap("hffinal", solver_->h()); });
-  attempt([&] { out_->writeMap("tarrival", solver_->arrival(), &never); });
-  if (!solver_->twoPhase()) {
-    attempt([&] { out_->writeMap("hfmax", solver_->hMax()); });
-    attempt([&] { out_->writeMap("vfmax", solver_->vMax()); });
-  } else {
-    const flow::DebrisMaxima m = solver_->debrisMaxima();
-    attempt([&] { out_->writeMap("hfmax", m.hf); });
-    attempt([&] { out_->writeMap("vfmax", m.vf); });
-    attempt([&] { out_->writeMap("hsmax", m.hs); });
-    attempt([&] { out_->writeMap("vsmax", m.vs); });
-    attempt([&] { out_->writeMap("htmax", m.h); });
-    attempt([&] { out_->writeMap("sfracmax", m.solidFraction); });
-    attempt([&] { out_->writeMap("pimpactmax", m.impactPressure); });
-    if (!failed) {
-      const std::vector<double> hs = solver_->hs(), qsx = solver_->qsx(), qsy = solver_->qsy(), hf = solver_->h();
-      std::vector<double> total(hs.size()), deposit(hs.size(), 0.0);
-      for (std::size_t k = 0; k < hs.size(); ++k) {
-        total[k] = hs[k] + hf[k];
-        // Deposit: solids that have come to rest (friction stopped them exactly).
-        if (qsx[k] == 0.0 && qsy[k] == 0.0) deposit[k] = hs[k];
-      }
-      attempt([&] { out_->writeMap("hsfinal", hs); });
-      attempt([&] { out_->writeMap("htfinal", total); });
-      attempt([&] { out_->writeMap("deposit", deposit); });
-    }
-  }
-  if (particles_) {
-    attempt([&] { particles_->writeLayer(out_->claim("particles_final.gpkg")); });
-    if (!failed) {
-      const particles::ParticleGridFields pf = particles_->gridFields();
-      const double none = -1.0;
-      attempt([&] { out_->writeMap("hcfinal", pf.thickness); });
-      attempt([&] { out_->writeMap("cfracfinal", pf.cohesionFraction, &none); });
-      attempt([&] { out_->writeMap("releasedfluid", pf.releasedFluid); });
-    }
-  }
-  if (!ioError.empty()) {
-    if (failure_.empty()) failure_ = "output failed: " + ioError;
-    ending = Ending::Failed;
-  }
-  try {
-    out_->writeText("summary.json", summaryJson(s, ending));
-  } catch (const IoError& e) {
-    throw IoError((failure_.empty() ? std::string() : failure_ + "; ") + "summary.json could not be written: " +
-                  e.what());
-  }
-  if (!ioError.empty()) throw IoError(failure_ + "; summary.json records the failure");
-}
-
-std::string Simulation::summaryJson(const RunSummary& s, Ending ending) const {
-  const bool failed = ending == Ending::Failed;
-  const char* status = failed ? "failed" : ending == Ending::Stopped ? "stopped" : "completed";
-  std::ostringstream o;
-  o.precision(12);
-  const compute::DeviceInfo& d = ctx_->device();
-  const Grid& g = scene_.dem.grid;
-  o << "{\n  \"talus_version\": \"0.1.0\",\n  \"run_file\": \"" << jsonEscape(scene_.runFile) << "\",\n"
-    << "  \"status\": \"" << status << "\",\n";
-  if (failed) o << "  \"failure\": \"" << jsonEscape(failure_) << "\",\n";
-  if (!scene_.warnings.empty()) {  // what the scene's loading warned about (dropped material, bands, ...)
-    o << "  \"warnings\": [";
-    for (std::size_t w = 0; w < scene_.warnings.size(); ++w)
-      o << (w ? ", " : "") << "\"" << jsonEscape(scene_.warnings[w]) << "\"";
-    o << "],\n";
-  }
-  if (atRest_)
-    o << "  \"ended_at_rest\": \"kinetic energy below " << scene_.restFraction << " of its peak "
-      << peakKinetic_ << " J\",\n";
-  o << "  \"device\": \"" << jsonEscape(d.name) << "\",\n  \"platform\": \"" << jsonEscape(d.platformName) << "\",\n"
-    << "  \"precision\": \"" << compute::precisionName(ctx_->precision()) << "\",\n"
-    << "  \"grid\": {\"nx\": " << g.nx << ", \"ny\": " << g.ny << ", \"dx\": " << g.dx
-    << ", \"domain_cells\": " << domainCells_ << "},\n"
-    << "  \"start_time_s\": " << scene_.startTime << ",\n  \"end_time_s\": " << scene_.endTime << ",\n"
-    << "  \"simulated_s\": " << s.simulatedSeconds << ",\n  \"steps\": " << s.steps << ",\n"
-    << "  \"wall_time_s\": " << s.wallSeconds << ",\n  \"cell_updates_per_s\": " << s.cellUpdatesPerSecond << ",\n"
-    << "  \"volume\": {\"initial_m3\": " << s.initialVolume << ", \"final_m3\": " << s.finalVolume
-    << ", \"outflow_m3\": " << s.totalOutflow << ", \"balance_error\": " << s.volumeBalanceError << "}";
-  if (solver_->twoPhase()) {
-    const flow::FlowDiagnostics& dg = solver_->diagnostics();
-    o << ",\n  \"energy\": {\"kinetic_J\": " << dg.kinetic << ", \"vertical_kinetic_J\": " << dg.kineticVertical
-      << ", \"potential_J\": " << dg.potential << ", \"potential_released_J\": " << lastReleased_
-      << ", \"mechanical_lost_J\": " << lastLost_ << "}";
-  }
-  if (particles_)
-    o << ",\n  \"particles\": {\"count\": " << particles_->count() << ", \"initial_mass_kg\": " << particles_->initialMass()
-      << ", \"final_mass_kg\": " << particles_->mass() << ", \"outflow_kg\": " << particles_->cumulativeOutflow()
-      << ", \"balance_error\": " << particles_->balanceError() << "}";
-  o << "\n}\n";
-  return o.str();
 }
 
 }  // namespace talus::sim

@@ -88,6 +88,8 @@ class Simulation {
 
  private:
   void writeReport();
+  /// Layers thinner than this have speed 0 in the speed maps (as in the maxima maps) [m].
+  double speedThickness() const;
   void writeCheckpoint(double wallSeconds);
   /// How a run ended, as summary.json reports it.
   enum class Ending { Completed, Stopped, Failed };
@@ -109,6 +111,7 @@ class Simulation {
   std::unique_ptr<ParticleRun> particles_;  ///< hybrid mode only
   std::size_t domainCells_ = 0;
   std::string failure_;
+  bool fluidSeries_ = true;  ///< the scene can hold fluid: fluid series are written
   // Loop bookkeeping (restored on resume).
   long long steps_ = 0;
   int reportIndex_ = 0;

@@ -238,3 +238,31 @@ TEST_F(Cli, HybridRunRejectsImpossibleShearModulus) {
   EXPECT_TRUE(contains(r.err, "case.run")) << r;
   EXPECT_TRUE(contains(r.err, "Shear Modulus")) << r;
 }
+
+// The series of a run are those of the phases it can hold (issue 15): a dry granular run writes the
+// solids' thickness and speed at each report time and no all-zero fluid series, and the final speed
+// maps vffinal / vsfinal that OpenLISEM writes. The final solid speed never exceeds its maximum, and
+// the last report (at End Time) is the final state.
+TEST_F(Cli, DryGranularRunWritesSolidSeriesAndFinalSpeeds) {
+  writeScene("[Solids]\nInclude Initial Solids=1\nInitial Solid Height=water.tif\nInitial Solid IFA=0.1\n", "dry.run");
+  const Outcome r = talus("run dry.run --set \"Include Initial Water=0\" --set \"Timestep=1.5\"");
+  ASSERT_EQ(r.status, 0) << r;
+  const fs::path out = dir_ / "out";
+  EXPECT_FALSE(fs::exists(out / "series/hf_0000.tif"));
+  EXPECT_FALSE(fs::exists(out / "series/vf_0000.tif"));
+  const std::string index = slurp(out / "series/index.csv");
+  EXPECT_TRUE(contains(index, "0,0,series/hs_0000,series/vs_0000")) << index;
+  const Raster vs = talus::io::readRaster((out / "vsfinal.tif").string());
+  const Raster vsmax = talus::io::readRaster((out / "vsmax.tif").string());
+  const Raster last = talus::io::readRaster((out / "series/vs_0002.tif").string());  // t = 3 s = End Time
+  const Raster early = talus::io::readRaster((out / "series/vs_0001.tif").string());  // t = 1.5 s
+  double fastest = 0;
+  for (std::size_t k = 0; k < vs.values.size(); ++k) {
+    EXPECT_LE(vs.values[k], vsmax.values[k] * (1 + 1e-6) + 1e-12) << k;  // float maps
+    EXPECT_LE(early.values[k], vsmax.values[k] * (1 + 1e-6) + 1e-12) << k;
+    EXPECT_EQ(vs.values[k], last.values[k]) << k;
+    fastest = std::max(fastest, early.values[k]);
+  }
+  EXPECT_GT(fastest, 0.0);  // the 0.5 m block slumps (and has come to rest by 3 s)
+  EXPECT_TRUE(fs::is_regular_file(out / "vffinal.tif"));
+}

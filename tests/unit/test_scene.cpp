@@ -173,7 +173,9 @@ TEST_F(Scene, LoadsValidRunFile) {
       SCOPED_TRACE("cell " + std::to_string(i) + "," + std::to_string(j));
       EXPECT_EQ(s.flow.mask[k], dem.valid[k]);  // mask from the DEM's nodata
       if (!dem.valid[k]) continue;
-      EXPECT_DOUBLE_EQ(s.flow.bed[k], dem.values[k]);
+      // The solvers' bed is the DEM above its lowest valid cell (the local origin, sim/Scene.cpp).
+      EXPECT_DOUBLE_EQ(s.flow.bed[k], dem.values[k] - s.elevationOrigin);
+      EXPECT_LE(s.elevationOrigin, dem.values[k]);
       const bool block = i >= 2 && i < 6 && j >= 3 && j < 9;
       EXPECT_DOUBLE_EQ(s.flow.h[k], block ? 0.5 : 0.0);  // water.tif times 0.5
       EXPECT_DOUBLE_EQ(s.flow.manning[k], 0.1);           // the number 0.05 times 2, uniform
