@@ -145,8 +145,11 @@ std::vector<std::string> KeyRegistry::suggestions(const std::string& misspelt) c
   }
   std::stable_sort(hits.begin(), hits.end(),
                    [](const auto& a, const auto& b) { return a.first < b.first; });
+  // Only the closest names: 'Include Initial Stabilty' is one edit from 'Include Initial Stability'
+  // and should not also be offered 'Include Initial Solids', five edits away.
   std::vector<std::string> names;
-  for (const auto& h : hits) names.push_back(keys_[h.second].name);
+  for (const auto& h : hits)
+    if (h.first == hits.front().first) names.push_back(keys_[h.second].name);
   return names;
 }
 

@@ -99,7 +99,7 @@ class KeyRegistry {
   /// All cross-key rules in declaration order.
   const std::vector<KeyRule>& rules() const { return rules_; }
 
-  /// Declared names closest to a misspelt one, best first: case-insensitive Levenshtein distance
+  /// Declared names closest to a misspelt one (all at the smallest distance): case-insensitive Levenshtein distance
   /// on normalised names of at most max(1, length / 4) and at most a third of the name's length
   /// (so a short word is not "corrected" into an unrelated short key: 'coh' is not 'CFL').
   std::vector<std::string> suggestions(const std::string& misspelt) const;

@@ -559,17 +559,18 @@ std::string RunConfig::echo() const {
   const auto& specs = registry_.keys();
   std::vector<std::string> sections;
   for (const auto& k : specs)
-    if (std::find(sections.begin(), sections.end(), k.section) == sections.end())
+    if (k.role == KeyRole::Used && std::find(sections.begin(), sections.end(), k.section) == sections.end())
       sections.push_back(k.section);
   std::ostringstream os;
   if (!header_.empty()) os << header_ << "\n";
-  os << "# Talus configuration resolved from " << source_ << ": every declared key, paths absolute.\n";
+  os << "# Talus configuration resolved from " << source_ << ": every key Talus uses, paths absolute.\n";
   for (const auto& section : sections) {
     os << "\n[" << (section.empty() ? "Other" : section) << "]\n";
     for (std::size_t i = 0; i < specs.size(); ++i) {
       const KeySpec& spec = specs[i];
       const Entry& e = entries_[i];
-      if (spec.section != section) continue;
+      // The OpenLISEM keys Talus does not use are left out: the resolved file is what the run uses.
+      if (spec.section != section || spec.role != KeyRole::Used) continue;
       os << "# " << (spec.help.empty() ? spec.name : spec.help);
       if (!spec.unit.empty()) os << " [" << spec.unit << "]";
       os << " (" << (e.origin == "default" ? "default" : "from " + e.origin) << ")\n";

@@ -51,7 +51,7 @@ class RunConfig {
   /// Where the value came from: "file.run:12", "command line" or "default".
   std::string origin(const std::string& key) const;
 
-  /// The fully resolved configuration in run-file syntax: every declared key grouped by section,
+  /// The fully resolved configuration in run-file syntax: every key Talus uses grouped by section,
   /// paths absolute, each preceded by a comment with its help, unit and origin. fromText parses it
   /// back to the same values.
   std::string echo() const;
