@@ -215,8 +215,8 @@ std::string KeyRegistry::lisemMarkdownTable() const {
 
 std::string describeKeys(const KeyRegistry& keys) {
   return keys.markdownTable() + "### OpenLISEM Hazard 2.x keys\n\n" +
-         "Every key of OpenLISEM Hazard 2.x's parameter list, in the order its GUI writes them, with its\n" +
-         "default there and what Talus does with it (see \"OpenLISEM Hazard run-files\" above).\n\n" +
+         "Every key of OpenLISEM Hazard 2.x's parameter list (those Talus uses first), with its default\n" +
+         "there and what Talus does with it (see \"OpenLISEM Hazard run-files\" above).\n\n" +
          keys.lisemMarkdownTable();
 }
 
