@@ -46,7 +46,7 @@ Earth Pressure=constant
 Earth Pressure Coefficient=1
 [Particles]
 Use Material Point Method=1
-Elastic Modulus=1e8
+Young Modulus=1e8
 Poisson Ratio=0.3
 Particles Per Cell=4
 [Time]

@@ -4,6 +4,7 @@
 //   talus run --resume DIR [--device SEL] [--set "Key=Value"]... [--quiet]
 //   talus devices
 //   talus keys [--markdown]
+//   talus convert-runfile OPENLISEM.run TALUS.run
 //   talus render MAP.tif -o MAP.png [--hillshade DEM] [--ramp NAME] [--range LO HI] [--label TEXT]
 //                [--threshold T] [--scale N]
 // Exit status: 0 success, 1 usage or unexpected error, 2 bad input, 3 compute device error,
@@ -14,13 +15,16 @@
 
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <string>
 #include <vector>
 
 #include "compute/Device.hpp"
 #include "core/Error.hpp"
+#include "core/FileWrite.hpp"
 #include "io/MapRender.hpp"
 #include "io/RunConfig.hpp"
+#include "io/RunFileConvert.hpp"
 #include "sim/RunKeys.hpp"
 #include "sim/Scene.hpp"
 #include "sim/Simulation.hpp"
@@ -34,6 +38,8 @@ void usage(std::FILE* f) {
                "       talus run --resume DIR [--device SEL] [--set \"Key=Value\"]... [--quiet]\n"
                "       talus devices\n"
                "       talus keys [--markdown]\n"
+               "       talus convert-runfile OPENLISEM.run TALUS.run\n"
+               "         (writes a Talus run-file from an OpenLISEM Hazard one; lists what it dropped or changed)\n"
                "       talus render MAP.tif -o MAP.png [--hillshade DEM.tif] [--ramp depth|heat|viridis|cohesion]\n"
                "                    [--range LO HI] [--label TEXT] [--threshold T] [--scale PIXELS_PER_CELL]\n"
                "         (renders an output map over the DEM's hillshade with a legend; cells <= T, default 0,\n"
@@ -60,6 +66,19 @@ int listKeys(bool markdown) {
   for (const auto& k : keys.keys())
     std::printf("%-24s %-10s default %-10s %s\n", k.name.c_str(), talus::io::keyTypeName(k.type).c_str(),
                 k.defaultValue.empty() ? "\"\"" : k.defaultValue.c_str(), k.unit.c_str());
+  return 0;
+}
+
+/// `talus convert-runfile IN OUT`: OUT must not exist yet (a converted file never replaces one).
+int convertRunFile(int argc, char** argv) {
+  if (argc != 4) throw talus::InputError("usage: talus convert-runfile OPENLISEM.run TALUS.run");
+  const std::string in = argv[2], out = argv[3];
+  std::error_code ec;
+  if (std::filesystem::exists(out, ec)) throw talus::InputError("'" + out + "' exists already; give a new file name");
+  const talus::io::Conversion c = talus::io::convertRunFile(in, talus::talusRunKeys());
+  talus::writeFileAtomically(out, c.text);
+  for (const std::string& line : c.report) std::printf("talus: %s\n", line.c_str());
+  std::printf("talus: wrote %s\n", out.c_str());
   return 0;
 }
 
@@ -158,6 +177,7 @@ int main(int argc, char** argv) {
     if (cmd == "run") return runScene(argc, argv);
     if (cmd == "devices") return listDevices();
     if (cmd == "render") return talus::io::renderCommand(std::vector<std::string>(argv + 2, argv + argc));
+    if (cmd == "convert-runfile") return convertRunFile(argc, argv);
     if (cmd == "keys") return listKeys(argc > 2 && !std::strcmp(argv[2], "--markdown"));
     std::fprintf(stderr, "talus: unknown command '%s'\n", cmd.c_str());
     usage(stderr);

@@ -102,7 +102,11 @@ KeyRegistry& KeyRegistry::add(KeySpec spec) {
         std::find(spec.choices.begin(), spec.choices.end(), lower(spec.defaultValue)) == spec.choices.end())
       throw std::logic_error("KeyRegistry::add: default of choice key '" + spec.name + "' is not a choice");
   }
+  for (const auto& alias : spec.aliases)
+    if (index_.count(normalizeKeyName(alias)) || normalizeKeyName(alias) == key)
+      throw std::logic_error("KeyRegistry::add: alias '" + alias + "' of '" + spec.name + "' is declared already");
   index_.emplace(key, keys_.size());
+  for (const auto& alias : spec.aliases) index_.emplace(normalizeKeyName(alias), keys_.size());
   keys_.push_back(std::move(spec));
   return *this;
 }
@@ -126,7 +130,9 @@ int KeyRegistry::indexOf(const std::string& name) const {
 
 std::vector<std::string> KeyRegistry::suggestions(const std::string& misspelt) const {
   const std::string wanted = normalizeKeyName(misspelt);
-  const std::size_t limit = std::max<std::size_t>(2, wanted.size() / 4);
+  // A quarter of the letters (at least one) may differ, but never more than a third: 'coh' (3
+  // letters) two edits from 'CFL' is no misspelling of it, 'Maning' one edit from 'Manning' is.
+  const std::size_t limit = std::max<std::size_t>(1, wanted.size() / 4);
   std::vector<std::pair<std::size_t, std::size_t>> hits;  // (distance, key position)
   // The edit distance is at least the difference in length, so only names of about the same
   // length need the quadratic comparison: an 8 MiB misspelt key costs one pass, not minutes.
@@ -135,19 +141,22 @@ std::vector<std::string> KeyRegistry::suggestions(const std::string& misspelt) c
     const std::size_t gap = wanted.size() > name.size() ? wanted.size() - name.size() : name.size() - wanted.size();
     if (gap > limit) continue;
     const std::size_t d = editDistance(wanted, name);
-    if (d <= limit) hits.emplace_back(d, i);
+    if (d <= limit && 3 * d <= wanted.size()) hits.emplace_back(d, i);
   }
   std::stable_sort(hits.begin(), hits.end(),
                    [](const auto& a, const auto& b) { return a.first < b.first; });
+  // Only the closest names: 'Include Initial Stabilty' is one edit from 'Include Initial Stability'
+  // and should not also be offered 'Include Initial Solids', five edits away.
   std::vector<std::string> names;
-  for (const auto& h : hits) names.push_back(keys_[h.second].name);
+  for (const auto& h : hits)
+    if (h.first == hits.front().first) names.push_back(keys_[h.second].name);
   return names;
 }
 
 std::string KeyRegistry::markdownTable() const {
   std::vector<std::string> sections;
   for (const auto& k : keys_)
-    if (std::find(sections.begin(), sections.end(), k.section) == sections.end())
+    if (k.role == KeyRole::Used && std::find(sections.begin(), sections.end(), k.section) == sections.end())
       sections.push_back(k.section);
   std::ostringstream os;
   for (const auto& section : sections) {
@@ -155,7 +164,7 @@ std::string KeyRegistry::markdownTable() const {
        << "| Key | Type | Default | Unit | Range | Description |\n"
        << "|---|---|---|---|---|---|\n";
     for (const auto& k : keys_) {
-      if (k.section != section) continue;
+      if (k.section != section || k.role != KeyRole::Used) continue;
       std::string type = keyTypeName(k.type);
       if (k.type == KeyType::Choice) {
         type += ": ";
@@ -172,6 +181,43 @@ std::string KeyRegistry::markdownTable() const {
   return os.str();
 }
 
-std::string describeKeys(const KeyRegistry& keys) { return keys.markdownTable(); }
+std::string keyRoleName(KeyRole role) {
+  switch (role) {
+    case KeyRole::Used: return "used";
+    case KeyRole::Unmodelled: return "process switch";
+    case KeyRole::ProcessInput: return "input of a process Talus lacks";
+    case KeyRole::NoEffect: return "no effect";
+    case KeyRole::OutputSwitch: return "output switch";
+  }
+  return "?";
+}
+
+std::string KeyRegistry::lisemMarkdownTable() const {
+  std::ostringstream os;
+  os << "| OpenLISEM key | OpenLISEM default | In Talus |\n|---|---|---|\n";
+  for (const auto& k : keys_) {
+    if (!k.fromLisem) continue;
+    std::string what;
+    switch (k.role) {
+      case KeyRole::Used: what = "same key and meaning: " + k.help + (k.unit.empty() || k.unit == "-" ? "" : " [" + k.unit + "]"); break;
+      case KeyRole::Unmodelled:
+        what = "0 accepted; 1 refused: " + k.process + " is not modelled by Talus" + (k.plannedProcess ? " yet" : "");
+        break;
+      case KeyRole::ProcessInput: what = "accepted, not read: " + k.process; break;
+      case KeyRole::NoEffect: what = "accepted with a note, no effect: " + k.process; break;
+      case KeyRole::OutputSwitch: what = "accepted with a note: OpenLISEM output switch, not honoured yet"; break;
+    }
+    os << "| `" << k.name << "` | " << cell(k.lisemDefault.empty() ? "(empty)" : k.lisemDefault) << " | " << cell(what)
+       << " |\n";
+  }
+  return os.str();
+}
+
+std::string describeKeys(const KeyRegistry& keys) {
+  return keys.markdownTable() + "### OpenLISEM Hazard 2.x keys\n\n" +
+         "Every key of OpenLISEM Hazard 2.x's parameter list (those Talus uses first), with its default\n" +
+         "there and what Talus does with it (see \"OpenLISEM Hazard run-files\" above).\n\n" +
+         keys.lisemMarkdownTable();
+}
 
 }  // namespace talus::io

@@ -27,6 +27,16 @@ enum class KeyType {
 /// The name of a key type as written in the key table ("flag", "real", ...).
 std::string keyTypeName(KeyType type);
 
+/// What Talus does with a declared key. OpenLISEM Hazard's GUI writes every key of its parameter list
+/// into each run-file, processes that are off included, so Talus knows keys it does not use.
+enum class KeyRole {
+  Used,          ///< read by Talus (its own keys, and OpenLISEM Hazard's with OpenLISEM's meaning)
+  Unmodelled,    ///< a flag switching on a process Talus does not model: 0 accepted, 1 refused
+  ProcessInput,  ///< an input of a process Talus does not model: accepted, never read
+  NoEffect,      ///< an OpenLISEM Hazard setting without effect in Talus: accepted with a note
+  OutputSwitch,  ///< an OpenLISEM Hazard output switch Talus does not honour yet: accepted with a note
+};
+
 /// The declaration of one run-file key.
 struct KeySpec {
   std::string name;          ///< canonical name as written in run-files, e.g. "Map Directory"
@@ -42,7 +52,23 @@ struct KeySpec {
   /// A Flag key that switches on the process this map belongs to ("Include Initial Water"): while
   /// it is 0 the map is not read, need not exist, and giving it earns a warning. Empty: always read.
   std::string enabledBy;
+  KeyRole role = KeyRole::Used;
+  /// Unmodelled: the process as the refusal names it ("slope failure"); ProcessInput and NoEffect:
+  /// why Talus does not read the key. Shown in the OpenLISEM key table of docs/runfile.md.
+  std::string process;
+  /// Unmodelled: Talus is meant to model the process (refused as "not modelled by Talus yet").
+  bool plannedProcess = false;
+  /// The key is one OpenLISEM Hazard 2.x's GUI writes (lisem/model/parameters/parametermanager.h).
+  bool fromLisem = false;
+  /// OpenLISEM Hazard's default value text (when fromLisem); a switched-off map given with it is
+  /// OpenLISEM's own boilerplate and earns no warning.
+  std::string lisemDefault;
+  /// Other names that mean this key (OpenLISEM 6's "Begin time" for Start Time).
+  std::vector<std::string> aliases;
 };
+
+/// The name of a key role as written in the OpenLISEM key table ("used", "process off", ...).
+std::string keyRoleName(KeyRole role);
 
 /// A consistency rule over several keys, checked after every key parsed. Returns "" when the
 /// configuration satisfies it, else the problem (the message should name the keys involved).
@@ -73,17 +99,21 @@ class KeyRegistry {
   /// All cross-key rules in declaration order.
   const std::vector<KeyRule>& rules() const { return rules_; }
 
-  /// Declared names closest to a misspelt one, best first: case-insensitive Levenshtein distance
-  /// on normalised names, at most max(2, length / 4).
+  /// Declared names closest to a misspelt one (all at the smallest distance): case-insensitive Levenshtein distance
+  /// on normalised names of at most max(1, length / 4) and at most a third of the name's length
+  /// (so a short word is not "corrected" into an unrelated short key: 'coh' is not 'CFL').
   std::vector<std::string> suggestions(const std::string& misspelt) const;
 
   /// A Markdown table of every key grouped by section: name, type, default, unit, range, help.
   std::string markdownTable() const;
+  /// A Markdown table of OpenLISEM Hazard's keys (KeySpec::fromLisem): OpenLISEM's default and
+  /// what Talus does with each.
+  std::string lisemMarkdownTable() const;
 
  private:
   std::vector<KeySpec> keys_;
   std::vector<KeyRule> rules_;
-  std::unordered_map<std::string, std::size_t> index_;  // normalised name -> position
+  std::unordered_map<std::string, std::size_t> index_;  // normalised name or alias -> position
 };
 
 /// The key table of a registry as Markdown (what `talus keys --markdown` prints).

@@ -18,6 +18,7 @@
 #include <stdexcept>
 
 #include "core/Error.hpp"
+#include "io/LisemValues.hpp"
 
 namespace talus::io {
 
@@ -90,6 +91,32 @@ std::string checkRange(const KeySpec& spec, double v, double raw, double mult) {
 std::string clip(const std::string& text) {
   if (text.size() <= kMaxShown) return text;
   return text.substr(0, kMaxShown) + "... (" + std::to_string(text.size()) + " bytes)";
+}
+
+/// Reads a number as OpenLISEM Hazard users write it: plain, or with a decimal comma (noted), or
+/// for a key in minutes as OpenLISEM's day:minute time (noted). Returns "" or the problem.
+std::string readUserNumber(const KeySpec& spec, const std::string& text, double& value, std::string& note) {
+  const Number n = parseNumber(text, value);
+  if (n == Number::Ok) return "";
+  if (n == Number::NotFinite) return "bad number '" + clip(text) + "': not finite";
+  std::string dotted;
+  const DecimalComma comma = readDecimalComma(text, dotted);
+  if (comma == DecimalComma::Ambiguous)
+    return "bad number '" + clip(text) + "': a decimal comma or a thousands separator? write it with a decimal "
+           "point (" + text.substr(0, text.find(',')) + "." + text.substr(text.find(',') + 1) + ") or without the comma";
+  if (comma == DecimalComma::Read && parseNumber(dotted, value) == Number::Ok) {
+    note = "'" + text + "' has a decimal comma: read as " + dotted;
+    return "";
+  }
+  if (spec.unit == "min" && readDayMinute(text, value)) {
+    note = "'" + text + "' read as OpenLISEM's day:minute time, " + formatNumber(value) + " min (day x 1440 + minute)";
+    return "";
+  }
+  std::string hint;
+  if (text.find(',') != std::string::npos) hint = ": expected one number with a decimal point (e.g. 0.05)";
+  else if (text.find(':') != std::string::npos && spec.unit == "min")
+    hint = ": expected minutes (e.g. 90) or OpenLISEM's day:minute (ddd:mmmm, e.g. 001:0030)";
+  return "bad number '" + clip(text) + "'" + hint;
 }
 
 /// Reads a quoted value starting at rest[0] == '"': up to the next unescaped '"', with \\, \" and
@@ -211,6 +238,8 @@ std::string joinLines(std::vector<std::pair<long, std::string>> errors) {
 }
 
 }  // namespace
+
+std::string printableText(const std::string& text) { return printable(text); }
 
 RunConfig::RunConfig(const KeyRegistry& keys, std::string source, std::string baseDir)
     : registry_(keys), source_(std::move(source)), entries_(keys.keys().size()) {
@@ -390,11 +419,17 @@ std::vector<std::pair<long, std::string>> RunConfig::validate() {
 std::string RunConfig::parseEntry(std::size_t i, Entry& e, const std::string& mapDir) const {
   const KeySpec& spec = registry_.keys()[i];
   e.multiplier = 1;
+  e.note.clear();
   if (e.hasMult) {
     if (spec.type != KeyType::Real && spec.type != KeyType::Integer && spec.type != KeyType::Map)
       return "a multiplier ('" + clip(e.rawMult) + "') applies only to numbers and maps";
-    if (parseNumber(e.rawMult, e.multiplier) != Number::Ok)
+    std::string dotted;
+    if (parseNumber(e.rawMult, e.multiplier) == Number::Ok) {
+    } else if (readDecimalComma(e.rawMult, dotted) == DecimalComma::Read && parseNumber(dotted, e.multiplier) == Number::Ok) {
+      e.note = "multiplier '" + e.rawMult + "' has a decimal comma: read as " + dotted;
+    } else {
       return "bad multiplier '" + clip(e.rawMult) + "': expected a finite number";
+    }
   }
   switch (spec.type) {
     case KeyType::Flag: {
@@ -402,14 +437,16 @@ std::string RunConfig::parseEntry(std::size_t i, Entry& e, const std::string& ma
       if (v == "1" || v == "true" || v == "yes" || v == "on") e.flagValue = true;
       else if (v == "0" || v == "false" || v == "no" || v == "off") e.flagValue = false;
       else return "bad flag value '" + clip(e.raw) + "': expected 0 or 1 (or true/false, yes/no)";
+      if (spec.role == KeyRole::Unmodelled && e.flagValue)
+        return spec.process + " is not modelled by Talus" + (spec.plannedProcess ? " yet" : "") +
+               " (OpenLISEM Hazard's process); set '" + spec.name + "=0' to run without it";
       return "";
     }
     case KeyType::Integer:
     case KeyType::Real: {
       if (e.raw.empty()) return "no value given; expected a number" + unitSuffix(spec);
-      const Number n = parseNumber(e.raw, e.number);
-      if (n == Number::NotANumber) return "bad number '" + clip(e.raw) + "'";
-      if (n == Number::NotFinite) return "bad number '" + clip(e.raw) + "': not finite";
+      const std::string bad = readUserNumber(spec, e.raw, e.number, e.note);
+      if (!bad.empty()) return bad;
       const double v = e.number * e.multiplier;
       if (spec.type == KeyType::Integer && (v != std::round(v) || std::fabs(v) > INT_MAX))
         return "value " + formatNumber(v) + " is not an integer";
@@ -429,6 +466,16 @@ std::string RunConfig::parseEntry(std::size_t i, Entry& e, const std::string& ma
       e.textValue = e.raw;
       return "";
     case KeyType::Directory:
+      if (!e.quoted && isWindowsDrivePath(e.raw)) {
+        // A folder on a Windows drive cannot be here: its last name under the run-file's folder
+        // (OpenLISEM's maps/ and res/ sit next to the run-file) when that exists, else the folder.
+        const std::string sub = resolvePath(baseDir_, lastPathComponent(e.raw));
+        std::error_code ec;
+        const bool useSub = spec.name != kMapDirectoryKey || fs::is_directory(sub, ec);
+        e.textValue = useSub ? sub : baseDir_;
+        e.note = "Windows path '" + clip(e.raw) + "' taken as '" + e.textValue + "'";
+        return "";
+      }
       e.textValue = resolvePath(baseDir_, e.raw, e.quoted);
       return "";
     case KeyType::Map: {
@@ -438,15 +485,35 @@ std::string RunConfig::parseEntry(std::size_t i, Entry& e, const std::string& ma
       double c = 0;
       const Number n = parseNumber(e.raw, c);
       if (n == Number::NotFinite) return "bad number '" + clip(e.raw) + "': not finite";
-      if (n == Number::Ok && !e.quoted) {
+      std::string dotted;
+      const DecimalComma comma = e.quoted || n == Number::Ok ? DecimalComma::None : readDecimalComma(e.raw, dotted);
+      const bool commaNumber = comma == DecimalComma::Read && parseNumber(dotted, c) == Number::Ok;
+      if (commaNumber) {
+        e.note = "'" + e.raw + "' has a decimal comma: read as the uniform value " + dotted;
+      } else if (comma == DecimalComma::Ambiguous) {
+        return "value '" + clip(e.raw) + "': a decimal comma or a thousands separator? write the number with a "
+               "decimal point or without the comma";
+      }
+      if ((n == Number::Ok || commaNumber) && !e.quoted) {
         e.mapValue.constant = c;
         return checkRange(spec, c * e.multiplier, c, e.multiplier);
       }
       e.mapValue.isFile = true;
-      e.mapValue.file = resolvePath(mapDir, e.raw, e.quoted);
+      if (!e.quoted && isWindowsDrivePath(e.raw)) {  // a file on a Windows drive: its name in the Map Directory
+        e.mapValue.file = resolvePath(mapDir, lastPathComponent(e.raw));
+        e.note = "Windows path '" + clip(e.raw) + "' taken as '" + e.mapValue.file + "'";
+      } else {
+        e.mapValue.file = resolvePath(mapDir, e.raw, e.quoted);
+      }
       if (!switchedOn(spec)) return "";  // a map of a process that is off is not read (warnings())
       std::error_code ec;
-      if (!fs::exists(e.mapValue.file, ec)) return "map file '" + e.mapValue.file + "' does not exist";
+      if (!fs::exists(e.mapValue.file, ec)) {
+        const std::string other = findIgnoringCase(e.mapValue.file);
+        if (other.empty()) return "map file '" + e.mapValue.file + "' does not exist";
+        e.note = (e.note.empty() ? "" : e.note + "; ") + "map file '" + e.mapValue.file + "' does not exist: using '" +
+                 other + "' (same name but for letter case)";
+        e.mapValue.file = other;
+      }
       if (fs::is_directory(e.mapValue.file, ec))
         return "map '" + e.mapValue.file + "' is a folder, not a raster file";
       return "";
@@ -492,30 +559,40 @@ std::string RunConfig::echo() const {
   const auto& specs = registry_.keys();
   std::vector<std::string> sections;
   for (const auto& k : specs)
-    if (std::find(sections.begin(), sections.end(), k.section) == sections.end())
+    if (k.role == KeyRole::Used && std::find(sections.begin(), sections.end(), k.section) == sections.end())
       sections.push_back(k.section);
   std::ostringstream os;
   if (!header_.empty()) os << header_ << "\n";
-  os << "# Talus configuration resolved from " << source_ << ": every declared key, paths absolute.\n";
+  os << "# Talus configuration resolved from " << source_ << ": every key Talus uses, paths absolute.\n";
   for (const auto& section : sections) {
     os << "\n[" << (section.empty() ? "Other" : section) << "]\n";
     for (std::size_t i = 0; i < specs.size(); ++i) {
       const KeySpec& spec = specs[i];
       const Entry& e = entries_[i];
-      if (spec.section != section) continue;
+      // The OpenLISEM keys Talus does not use are left out: the resolved file is what the run uses.
+      if (spec.section != section || spec.role != KeyRole::Used) continue;
       os << "# " << (spec.help.empty() ? spec.name : spec.help);
       if (!spec.unit.empty()) os << " [" << spec.unit << "]";
       os << " (" << (e.origin == "default" ? "default" : "from " + e.origin) << ")\n";
-      std::string value = e.raw;
-      if (spec.type == KeyType::Flag) value = e.flagValue ? "1" : "0";
-      if (spec.type == KeyType::Choice || spec.type == KeyType::Directory) value = e.textValue;
-      if (spec.type == KeyType::Map && e.mapValue.isFile) value = e.mapValue.file;
-      os << spec.name << "=" << quoteForEcho(value);
-      if (e.hasMult) os << "=" << e.rawMult;
-      os << "\n";
+      os << spec.name << "=" << valueText(spec.name) << "\n";
     }
   }
   return os.str();
+}
+
+std::string RunConfig::valueText(const std::string& key) const {
+  const Entry& e = entry(key, {});
+  const KeySpec& spec = *registry_.find(key);
+  std::string value = e.raw;
+  // A value read in another notation (decimal comma, day:minute) is written as the number it is.
+  if ((spec.type == KeyType::Real || spec.type == KeyType::Integer) && !e.note.empty()) value = formatNumber(e.number);
+  if (spec.type == KeyType::Flag) value = e.flagValue ? "1" : "0";
+  if (spec.type == KeyType::Choice || spec.type == KeyType::Directory) value = e.textValue;
+  if (spec.type == KeyType::Map) value = e.mapValue.isFile ? e.mapValue.file : (e.note.empty() ? e.raw : formatNumber(e.mapValue.constant));
+  std::string out = quoteForEcho(value);
+  double plain = 0;
+  if (e.hasMult) out += "=" + (parseNumber(e.rawMult, plain) == Number::Ok ? e.rawMult : formatNumber(e.multiplier));
+  return out;
 }
 
 bool RunConfig::switchedOn(const KeySpec& spec) const {
@@ -524,19 +601,6 @@ bool RunConfig::switchedOn(const KeySpec& spec) const {
   if (idx < 0) throw std::logic_error("RunConfig: key '" + spec.name + "' is enabled by undeclared '" + spec.enabledBy + "'");
   const std::string v = lower(entries_[static_cast<std::size_t>(idx)].raw);
   return v == "1" || v == "true" || v == "yes" || v == "on";
-}
-
-std::vector<std::string> RunConfig::warnings() const {
-  std::vector<std::string> out;
-  const auto& specs = registry_.keys();
-  for (std::size_t i = 0; i < specs.size(); ++i) {
-    const Entry& e = entries_[i];
-    // A value equal to the default says nothing (run.resolved.run writes every key, defaults too).
-    if (e.origin == "default" || (e.raw == specs[i].defaultValue && !e.hasMult) || switchedOn(specs[i])) continue;
-    out.push_back(printable(where(e) + ": key '" + specs[i].name + "' is given, but '" + specs[i].enabledBy +
-                            "' is 0: the map is not read (set '" + specs[i].enabledBy + "=1' to use it)"));
-  }
-  return out;
 }
 
 }  // namespace talus::io

@@ -51,14 +51,22 @@ class RunConfig {
   /// Where the value came from: "file.run:12", "command line" or "default".
   std::string origin(const std::string& key) const;
 
-  /// The fully resolved configuration in run-file syntax: every declared key grouped by section,
+  /// The fully resolved configuration in run-file syntax: every key Talus uses grouped by section,
   /// paths absolute, each preceded by a comment with its help, unit and origin. fromText parses it
   /// back to the same values.
   std::string echo() const;
 
-  /// Warnings about the configuration that do not stop a run: maps given for a process that is
-  /// switched off (KeySpec::enabledBy) with a value other than the default, each naming where the
-  /// map was given and the switch.
+  /// The value of a key in run-file syntax as echo() writes it (paths absolute, numbers read from
+  /// a decimal comma or day:minute time written plainly, quoted where needed, "=multiplier" kept).
+  std::string valueText(const std::string& key) const;
+  /// How the value was read when it needed reading OpenLISEM-style (decimal comma, day:minute,
+  /// Windows path, file name in another case), else "".
+  std::string note(const std::string& key) const { return entry(key, {}).note; }
+
+  /// Warnings about the configuration that do not stop a run (RunConfigNotes.cpp): maps given for
+  /// a process that is switched off (KeySpec::enabledBy) with a value other than the default or
+  /// OpenLISEM's, values read OpenLISEM-style (note()), one line for the OpenLISEM settings given
+  /// that have no effect in Talus and one for OpenLISEM's output switches.
   std::vector<std::string> warnings() const;
 
   /// Name of the run-file (or display name of the text) as used in messages.
@@ -83,6 +91,7 @@ class RunConfig {
     bool flagValue = false;
     std::string textValue;   // Choice (lowercase), Text, Directory (absolute)
     MapValue mapValue;
+    std::string note;        // how an OpenLISEM-style value was read ("" when plainly)
   };
 
   RunConfig(const KeyRegistry& keys, std::string source, std::string baseDir);
@@ -96,6 +105,8 @@ class RunConfig {
   bool switchedOn(const KeySpec& spec) const;
   /// Location prefix of messages about an entry ("file:12", "command line --set", or the file).
   std::string where(const Entry& e) const;
+  /// The one-line notes about OpenLISEM keys Talus accepts but does not act on (RunConfigNotes.cpp).
+  std::vector<std::string> lisemNotes() const;
   /// The entry of a declared key of the given type; std::logic_error otherwise.
   const Entry& entry(const std::string& key, std::initializer_list<KeyType> types) const;
 
@@ -105,5 +116,8 @@ class RunConfig {
   std::string header_;  // first header line of the run-file, kept for echo
   std::vector<Entry> entries_;  // parallel to registry_.keys()
 };
+
+/// Text with control bytes escaped (\0, \xNN), as messages that quote a run-file show it.
+std::string printableText(const std::string& text);
 
 }  // namespace talus::io

@@ -1,5 +1,7 @@
-// Declarations of Talus's run-file keys. OpenLISEM Hazard's names and units are kept where it defines
-// the key (times in minutes, Timestep in seconds); Talus's own keys follow the same style.
+// Declarations of Talus's run-file keys. OpenLISEM Hazard's names, meanings and units are kept where
+// it defines the key (times in minutes, Timestep in seconds, Elastic Modulus the bulk modulus);
+// lisem(default, ...) marks them with OpenLISEM's default. Talus's own keys follow the same style;
+// the OpenLISEM keys Talus does not use are declared in LisemKeys.cpp.
 #include "sim/RunKeys.hpp"
 
 #include <limits>
@@ -8,6 +10,7 @@
 #include <vector>
 
 #include "io/RunConfig.hpp"
+#include "sim/KeyBuilders.hpp"
 
 namespace talus::sim {
 
@@ -16,116 +19,33 @@ namespace {
 using io::KeyRegistry;
 using io::KeySpec;
 using io::KeyType;
-
-constexpr double kInf = std::numeric_limits<double>::infinity();
-
-// Builders: one call declares one key. Arguments follow the order of the key table.
-
-KeySpec flag(std::string name, std::string def, std::string help) {
-  KeySpec k;
-  k.name = std::move(name);
-  k.type = KeyType::Flag;
-  k.defaultValue = std::move(def);
-  k.help = std::move(help);
-  return k;
-}
-
-KeySpec real(std::string name, std::string def, std::string unit, double min, double max, std::string help) {
-  KeySpec k;
-  k.name = std::move(name);
-  k.type = KeyType::Real;
-  k.defaultValue = std::move(def);
-  k.unit = std::move(unit);
-  k.min = min;
-  k.max = max;
-  k.help = std::move(help);
-  return k;
-}
-
-KeySpec map(std::string name, std::string def, std::string unit, double min, double max, std::string help) {
-  KeySpec k = real(std::move(name), std::move(def), std::move(unit), min, max, std::move(help));
-  k.type = KeyType::Map;
-  return k;
-}
-
-KeySpec choice(std::string name, std::vector<std::string> choices, std::string def, std::string help) {
-  KeySpec k;
-  k.name = std::move(name);
-  k.type = KeyType::Choice;
-  k.choices = std::move(choices);
-  k.defaultValue = std::move(def);
-  k.help = std::move(help);
-  return k;
-}
-
-KeySpec text(std::string name, std::string def, std::string help, KeyType type = KeyType::Text) {
-  KeySpec k;
-  k.name = std::move(name);
-  k.type = type;
-  k.defaultValue = std::move(def);
-  k.help = std::move(help);
-  return k;
-}
-
-KeySpec required(KeySpec k) {
-  k.required = true;
-  return k;
-}
-
-/// A map read only while the flag `process` is 1 (KeySpec::enabledBy).
-KeySpec readWhen(std::string process, KeySpec k) {
-  k.enabledBy = std::move(process);
-  return k;
-}
-
-/// A map of the solids, read only with Include Initial Solids=1.
-KeySpec solidMap(std::string name, std::string def, std::string unit, double min, double max, std::string help) {
-  return readWhen("Include Initial Solids", map(std::move(name), std::move(def), std::move(unit), min, max, std::move(help)));
-}
-
-/// A map of the particles, read only with Use Material Point Method=1.
-KeySpec particleMap(std::string name, std::string def, std::string unit, double min, double max, std::string help) {
-  return readWhen("Use Material Point Method",
-                  map(std::move(name), std::move(def), std::move(unit), min, max, std::move(help)));
-}
-
-/// Adds keys to a registry under one section.
-class Section {
- public:
-  Section(KeyRegistry& keys, std::string name) : keys_(keys), name_(std::move(name)) {}
-  Section& operator<<(KeySpec k) {
-    k.section = name_;
-    keys_.add(std::move(k));
-    return *this;
-  }
-
- private:
-  KeyRegistry& keys_;
-  std::string name_;
-};
+using namespace keys;
 
 void addInputKeys(KeyRegistry& r) {
   Section(r, "Input")
-      << text("Map Directory", "", "folder holding the maps (relative to the run-file's folder)",
-              KeyType::Directory)
-      << required(map("DEM", "", "m", -kInf, kInf, "bed elevation; nodata cells are outside the domain"))
+      << lisem("<site>/maps/", text("Map Directory", "", "folder holding the maps (relative to the run-file's folder)",
+                                     KeyType::Directory))
+      << lisem("dem.map", required(map("DEM", "", "m", -kInf, kInf, "bed elevation; nodata cells are outside the domain")))
       << flag("Convert Raster Units", "0",
               "convert maps in a projected CRS in feet (or another non-metre unit) to metres: cell sizes, "
               "elevations and thicknesses; 0: such maps are refused")
-      << flag("Include Initial Water", "0", "start with the water of Initial Fluid Height")
-      << readWhen("Include Initial Water",
-                  map("Initial Fluid Height", "0", "m", 0, 1e4, "vertical water thickness at t = start"));
+      << lisem("0", flag("Include Initial Water", "0", "start with the water of Initial Fluid Height"))
+      << lisem("initialfh.map", readWhen("Include Initial Water", map("Initial Fluid Height", "0", "m", 0, 1e4,
+                                                                       "vertical water thickness at t = start")));
 }
 
 /// Solids of the two-phase grid model (spec §4): OpenLISEM Hazard's names and units first.
 void addSolidKeys(KeyRegistry& r) {
   Section(r, "Solids")
-      << flag("Include Initial Solids", "0", "start with the solids of Initial Solid Height (two-phase model)")
-      << solidMap("Initial Solid Height", "0", "m", 0, 1e4, "vertical solid thickness alpha_s H at t = start")
-      << solidMap("Initial Solid Density", "2650", "kg/m^3", 1000, 6000, "density rho_s of the solid grains")
-      << solidMap("Initial Solid IFA", "0.5236", "rad", 0, 1.5, "internal friction angle phi of the solids")
-      << solidMap("Initial Solid Rocksize", "0.01", "m", 1e-6, 100, "representative grain or block size d")
-      << solidMap("Initial Cohesion", "0", "kPa", 0, 1e6, "cohesion c (reduces the lateral pressure, Bell)")
+      << lisem("0", flag("Include Initial Solids", "0", "start with the solids of Initial Solid Height (two-phase model)"))
+      << lisem("initialsh.map", solidMap("Initial Solid Height", "0", "m", 0, 1e4, "vertical solid thickness alpha_s H at t = start"))
+      << lisem("initialsd.map", solidMap("Initial Solid Density", "2650", "kg/m^3", 1000, 6000, "density rho_s of the solid grains"))
+      << lisem("initialsifa.map", solidMap("Initial Solid IFA", "0.5236", "rad", 0, 1.5, "internal friction angle phi of the solids"))
+      << lisem("initialsrocksize.map", solidMap("Initial Solid Rocksize", "0.01", "m", 1e-6, 100, "representative grain or block size d"))
+      // OpenLISEM's form says Pa, but its particle kernel multiplies the value by 1000 (kPa), as
+      // Talus does: docs/runfile.md, "OpenLISEM Hazard run-files".
+      << lisem("initialscohesion.map", solidMap("Initial Cohesion", "0", "kPa", 0, 1e6,
+                                                "cohesion c (reduces the lateral pressure, Bell); kPa as OpenLISEM's code reads it"))
       << flag("Bed Friction Equals IFA", "1", "bed friction angle delta = internal friction angle phi")
       << solidMap("Bed Friction Angle", "0.5236", "rad", 0, 1.5, "bed friction angle delta (when not equal to IFA)")
       << choice("Earth Pressure", {"savage-hutter", "constant"}, "savage-hutter",
@@ -135,7 +55,7 @@ void addSolidKeys(KeyRegistry& r) {
       << real("Fluid Density", "1000", "kg/m^3", 500, 2000, "density rho_f of the fluid phase")
       << choice("Drag Law", {"off", "linear", "quadratic"}, "linear",
                 "solid-fluid drag of Pudasaini (2012): j = 1 (linear) or j = 2 (quadratic)")
-      << real("Drag coefficient multiplier", "1", "-", 0, 1e9, "multiplies the drag coefficient")
+      << lisem("1", real("Drag coefficient multiplier", "1", "-", 0, 1e9, "multiplies the drag coefficient"))
       << real("Drag P Exponent", "1", "-", 0.1, 10, "m in P = alpha_s^m (fluid-like / solid-like drag)")
       << real("Drag M", "2.4", "-", 1, 10, "M in the solid-like drag G = alpha_f^(M-1) (Pitman & Le 2005)")
       << real("Drag Smoothing Velocity", "10", "m/s", 0, 1e4, "K of the smoothing function S_p (P.33)")
@@ -155,15 +75,21 @@ void addSolidKeys(KeyRegistry& r) {
 /// Structured solids as particles (hybrid mode, spec §5): OpenLISEM Hazard's names first.
 void addParticleKeys(KeyRegistry& r) {
   Section(r, "Particles")
-      << flag("Use Material Point Method", "0", "structured solids as elasto-plastic particles (hybrid mode)")
+      << lisem("0", flag("Use Material Point Method", "0", "structured solids as elasto-plastic particles (hybrid mode)"))
       << particleMap("Structured Fraction", "1", "-", 0, 1, "f_sc: share of the initial solids that is structured (particles)")
       << particleMap("Confined Fluid Fraction", "1", "-", 0, 1, "f_fc: share of the initial fluid held in the structured solids")
-      << real("Elastic Modulus", "1e7", "Pa", 1e3, 1e13, "Young's modulus E of the structured material")
+      << lisem("1e+13", real("Elastic Modulus", "0", "Pa", 0, 1e14,
+                              "bulk modulus K (OpenLISEM Hazard's meaning); 0: the material is set by Young Modulus"))
+      << real("Young Modulus", "1e7", "Pa", 1e3, 1e14, "Young's modulus E, used when Elastic Modulus is 0")
       << real("Poisson Ratio", "0.3", "-", 0, 0.49, "Poisson ratio nu (used when Shear Modulus is 0)")
-      << real("Shear Modulus", "0", "Pa", 0, 1e13, "shear modulus G; > 0 sets nu = E / (2 G) - 1")
-      << real("Particle Fractional Dimension", "0", "m^3", 0, 1e12,
-              "particle volume V_I (OpenLISEM Hazard); 0: from Particles Per Cell")
-      << real("Particles Per Cell", "4", "-", 1, 400, "particles in the thickest cell when V_I is 0")
+      << lisem("1e+12", real("Shear Modulus", "0", "Pa", 0, 1e14,
+                             "shear modulus G; > 0 sets nu from K and G (or from E and G when Elastic Modulus is 0)"))
+      << lisem("0.2", real("Particle Fractional Dimension", "0", "-", 0, 100,
+                           "particle volume as a fraction of the cell volume dx^3 (OpenLISEM Hazard); 0: Particle "
+                           "Volume or Particles Per Cell"))
+      << real("Particle Volume", "0", "m^3", 0, 1e12,
+              "particle volume V_I when Particle Fractional Dimension is 0; 0: from Particles Per Cell")
+      << real("Particles Per Cell", "4", "-", 1, 400, "particles in the thickest cell when neither volume is given")
       << real("Critical Strain", "0.1", "-", 1e-6, 10, "epsilon_c of the cohesion degradation while yielding (P.26)")
       << real("Dilatancy Angle", "0", "rad", 0, 1.5, "psi of the plastic flow")
       << real("Sound Speed", "0", "m/s", 0, 1e6,
@@ -178,13 +104,20 @@ void addParticleKeys(KeyRegistry& r) {
 
 void addTimeKeys(KeyRegistry& r) {
   Section(r, "Time")
-      << real("Start Time", "0", "min", 0, 1e6, "simulated time at the start")
-      << real("End Time", "1", "min", 0, 1e6, "simulated time at the end; must exceed Start Time")
-      << real("Timestep", "10", "s", 1e-6, 1e9,
-              "report interval of time series maps and progress (OpenLISEM calls it Timestep)")
+      << lisem("0", alias("Begin time", real("Start Time", "0", "min", 0, 1e6,
+                                             "simulated time at the start (openLISEM 6: Begin time); also ddd:mmmm")))
+      << lisem("100", real("End Time", "1", "min", 0, 1e6, "simulated time at the end; must exceed Start Time; also ddd:mmmm"))
+      << lisem("10", real("Timestep", "10", "s", 1e-6, 1e9,
+                          "model time step of OpenLISEM Hazard: results are reported every Report every steps "
+                          "(the solvers take their own stable steps within it)"))
+      << lisem("1", integer("Report every", "1", "-", 1, 1e9, "report maps and progress every this many Timesteps"))
       << real("Stop At Rest Fraction", "0", "-", 0, 0.99,
               "end the run once the kinetic energy (grid phases and particles) has fallen below this fraction "
               "of its peak, as com1DFA's stopCrit; 0: run to End Time");
+  r.addRule({"Particle Fractional Dimension", "Particle Volume"}, [](const io::RunConfig& c) -> std::string {
+    if (c.real("Particle Fractional Dimension") == 0 || c.real("Particle Volume") == 0) return "";
+    return "give either Particle Fractional Dimension (a fraction of dx^3) or Particle Volume (m^3), not both";
+  });
   r.addRule({"Start Time", "End Time"}, [](const io::RunConfig& c) -> std::string {
     if (c.real("End Time") > c.real("Start Time")) return "";
     return "End Time (" + io::formatNumber(c.real("End Time")) + " min) must exceed Start Time (" +
@@ -194,7 +127,7 @@ void addTimeKeys(KeyRegistry& r) {
 
 void addFlowKeys(KeyRegistry& r) {
   Section(r, "Flow")
-      << map("Manning", "0.01", "s/m^(1/3)", 0, 1, "Manning roughness n")
+      << lisem("n.map", map("Manning", "0.01", "s/m^(1/3)", 0, 1, "Manning roughness n"))
       << flag("Slope Correction", "1", "gravity g cos^2(theta) on steep beds (spec section 1)")
       << flag("Curvature Acceleration", "0",
               "solids and particles: the bed's curvature in the normal stress and bed force (exact run-up in "
@@ -221,10 +154,11 @@ void addNumericsKeys(KeyRegistry& r) {
 void addOutputKeys(KeyRegistry& r) {
   Section(r, "Output")
       << real("Arrival Threshold", "0.01", "m", 0, 100, "thickness that marks arrival")
-      << text("Output Directory", "output",
-              "folder the results are written to (relative to the run-file's folder)", KeyType::Directory)
+      << lisem("<site>/res/", text("Output Directory", "output",
+                                    "folder the results are written to (relative to the run-file's folder)",
+                                    KeyType::Directory))
       << choice("Output Format", {"geotiff", "pcraster"}, "geotiff", "raster format of the outputs")
-      << flag("Report Series", "1", "write time-series maps every Timestep")
+      << flag("Report Series", "1", "write time-series maps every report (Timestep x Report every)")
       << real("Checkpoint Interval", "0", "min", 0, 1e6,
               "simulated time between checkpoints for `talus run --resume` (0: none)")
       << real("Checkpoint Wall Interval", "10", "min", 0, 1e6,
@@ -240,6 +174,7 @@ KeyRegistry buildKeys() {
   addFlowKeys(r);
   addNumericsKeys(r);
   addOutputKeys(r);
+  addLisemKeys(r);
   return r;
 }
 

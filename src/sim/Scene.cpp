@@ -93,6 +93,25 @@ std::vector<double> MapLoader::operator()(const std::string& key, const char* ma
   return out;
 }
 
+/// Young's modulus and Poisson ratio of the particles from the run-file. OpenLISEM Hazard's
+/// "Elastic Modulus" is the bulk modulus K of its stress update (particles.cl: dsigma = G eps_dev
+/// + K tr(eps) I), with "Shear Modulus" G; Talus's own "Young Modulus" E applies when it is 0.
+void setElasticity(const io::RunConfig& cfg, particles::ParticleSettings& ps) {
+  const double K = cfg.real("Elastic Modulus"), G = cfg.real("Shear Modulus"), nu = cfg.real("Poisson Ratio");
+  if (K > 0) {
+    ps.youngModulus = G > 0 ? 9 * K * G / (3 * K + G) : 3 * K * (1 - 2 * nu);
+    ps.poisson = G > 0 ? (3 * K - 2 * G) / (2 * (3 * K + G)) : nu;
+    return;  // K > 0 and G > 0 always give a Poisson ratio in (-1, 0.5)
+  }
+  ps.youngModulus = cfg.real("Young Modulus");
+  ps.poisson = G > 0 ? ps.youngModulus / (2 * G) - 1 : nu;
+  if (!(ps.poisson > -1 && ps.poisson < 0.5))
+    throw InputError(cfg.origin("Shear Modulus") + ": key 'Shear Modulus': " + io::formatNumber(G) +
+                     " Pa with Young Modulus " + io::formatNumber(ps.youngModulus) + " Pa gives Poisson ratio " +
+                     io::formatNumber(ps.poisson) + ", not below 0.5: the shear modulus must exceed E/3 "
+                     "(or give the bulk modulus as Elastic Modulus, OpenLISEM's meaning)");
+}
+
 }  // namespace
 
 Scene loadScene(const io::RunConfig& cfg) {
@@ -164,14 +183,19 @@ Scene loadScene(const io::RunConfig& cfg) {
       m.structured = loadMap("Structured Fraction");
       m.confined = loadMap("Confined Fluid Fraction");
       m.grain = loadMap("Initial Solid Rocksize");
-      s.particles.spacing.volume = cfg.real("Particle Fractional Dimension");
+      // OpenLISEM seeds floor(hs / (dx * PFD)) particles in a cell of solid height hs
+      // (modelruninit.cpp, factor_particle = 1 / PFD): each holds about PFD * dx^3.
+      const double dx = s.dem.grid.dx;
+      const double fraction = cfg.real("Particle Fractional Dimension");
+      s.particles.spacing.volume = fraction > 0 ? fraction * dx * dx * dx : cfg.real("Particle Volume");
       s.particles.spacing.perCell = cfg.real("Particles Per Cell");
       try {
         splitStructured(s.dem.grid, m, s.particles, particleLimit(cfg.choice("Precision")));
       } catch (const InputError& e) {  // name the keys that set the particle count
-        const bool byVolume = s.particles.spacing.volume > 0;
-        throw InputError(cfg.origin(byVolume ? "Particle Fractional Dimension" : "Particles Per Cell") + ": keys 'Particle Fractional Dimension' (" +
-                         io::formatNumber(s.particles.spacing.volume) + " m^3) / 'Particles Per Cell' (" +
+        const char* key = fraction > 0 ? "Particle Fractional Dimension"
+                          : s.particles.spacing.volume > 0 ? "Particle Volume" : "Particles Per Cell";
+        throw InputError(cfg.origin(key) + ": key '" + key + "' (particle volume " +
+                         io::formatNumber(s.particles.spacing.volume) + " m^3, Particles Per Cell " +
                          io::formatNumber(s.particles.spacing.perCell) + "): " + e.what() +
                          " (the memory this run can still take holds " + std::to_string(particleLimit(cfg.choice("Precision"))) +
                          " particles of about " + formatBytes(bytesPerParticle(cfg.choice("Precision"))) + " each)");
@@ -198,13 +222,7 @@ Scene loadScene(const io::RunConfig& cfg) {
   }
   if (s.particles.enabled) {
     particles::ParticleSettings& ps = s.particles.settings;
-    ps.youngModulus = cfg.real("Elastic Modulus");
-    const double G = cfg.real("Shear Modulus");
-    ps.poisson = G > 0 ? ps.youngModulus / (2 * G) - 1 : cfg.real("Poisson Ratio");
-    if (!(ps.poisson > -1 && ps.poisson < 0.5))
-      throw InputError(cfg.origin("Shear Modulus") + ": key 'Shear Modulus': " + io::formatNumber(G) +
-                       " Pa with Elastic Modulus " + io::formatNumber(ps.youngModulus) + " Pa gives Poisson ratio " +
-                       io::formatNumber(ps.poisson) + ", not below 0.5: the shear modulus must exceed E/3");
+    setElasticity(cfg, ps);
     ps.soundSpeed = cfg.real("Sound Speed");
     ps.smoothingFactor = cfg.real("Smoothing Length Factor");
     ps.cfl = cfg.real("Particle CFL");
@@ -255,7 +273,8 @@ Scene loadScene(const io::RunConfig& cfg) {
   f.skipDryTiles = cfg.flag("Skip Dry Tiles");
   f.depthPressure = flow::parseDepthPressure(cfg.choice("Depth Pressure"));
 
-  s.reportInterval = cfg.real("Timestep");
+  // OpenLISEM Hazard reports every "Report every" model steps of "Timestep" s (modelreport.cpp).
+  s.reportInterval = cfg.real("Timestep") * cfg.integer("Report every");
   s.startTime = 60.0 * cfg.real("Start Time");
   // Report times are start + k * Timestep: the span to the end is what must land on one.
   s.endTime = s.startTime + minutesOnReportGrid(cfg.real("End Time") - cfg.real("Start Time"), s.reportInterval);

@@ -110,7 +110,7 @@ TEST_F(RangeEnds, NoLegalValueStopsAPlainTwoPhaseRunInItsFirstSteps) {
 TEST_F(RangeEnds, NoLegalParticleValueStopsAPlainHybridRunInItsFirstSteps) {
   const std::string runFile = talus::test::writeCliScene(
       dir_, "[Solids]\nInclude Initial Solids=1\nInitial Solid Height=1\nInitial Cohesion=100\n"
-            "[Particles]\nUse Material Point Method=1\nElastic Modulus=1e7\n");
+            "[Particles]\nUse Material Point Method=1\nYoung Modulus=1e7\n");
   const SweepCount c =
       sweepRangeEnds(runFile, "0.0001", dir_ / "out", 2, [](const talus::io::KeySpec& k) { return k.section == "Particles"; });
   std::printf("range ends (particles): %d tried, %d ran, %d refused with a message\n", c.tried, c.ran, c.refused);

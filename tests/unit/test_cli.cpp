@@ -188,7 +188,7 @@ TEST_F(Cli, BogusDeviceExits3ListingDevices) {
 TEST_F(Cli, HybridRunWritesParticleLayers) {
   writeScene(
       "[Solids]\nInclude Initial Solids=1\nInitial Solid Height=2\nInitial Cohesion=100\n"
-      "[Particles]\nUse Material Point Method=1\nElastic Modulus=1e7\n");
+      "[Particles]\nUse Material Point Method=1\nYoung Modulus=1e7\n");
   const Outcome r = talus("run case.run");
   ASSERT_EQ(r.status, 0) << r;
   const std::string json = slurp(dir_ / "out/summary.json");
@@ -232,7 +232,7 @@ TEST_F(Cli, HybridRunRejectsAbsurdParticleCount) {
 
 TEST_F(Cli, HybridRunRejectsImpossibleShearModulus) {
   writeScene("[Solids]\nInclude Initial Solids=1\nInitial Solid Height=1\n"
-             "[Particles]\nUse Material Point Method=1\nElastic Modulus=1e7\nShear Modulus=1e6\n");
+             "[Particles]\nUse Material Point Method=1\nYoung Modulus=1e7\nShear Modulus=1e6\n");
   const Outcome r = talus("run case.run");
   EXPECT_EQ(r.status, 2) << r;
   EXPECT_TRUE(contains(r.err, "case.run")) << r;

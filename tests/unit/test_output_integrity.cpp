@@ -164,7 +164,7 @@ TEST_F(OutputIntegrity, AFailedResumeChangesNothing) {
 TEST_F(OutputIntegrity, TheParticleLayerAtTheStartTimeIsDefined) {
   talus::test::writeCliScene(dir_,
                              "[Solids]\nInclude Initial Solids=1\nInitial Solid Height=2\nInitial Cohesion=100\n"
-                             "[Particles]\nUse Material Point Method=1\nElastic Modulus=1e7\n");
+                             "[Particles]\nUse Material Point Method=1\nYoung Modulus=1e7\n");
   ASSERT_EQ(talus("run case.run").status, 0);
   const talus::io::ParticleLayer first = talus::io::readParticleLayer((dir_ / "out/particles/particles_0000.gpkg").string());
   ASSERT_EQ(talus("run case.run --overwrite").status, 0);

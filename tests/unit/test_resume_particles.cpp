@@ -37,7 +37,7 @@ TEST(Checkpoint, HybridRunResumesBitwise) {
   std::ofstream(dir / "scene.run") << "DEM=dem.tif\nInclude Initial Water=1\nInitial Fluid Height=water.tif\n"
                                    << "Include Initial Solids=1\nInitial Solid Height=solids.tif\nInitial Cohesion=10\n"
                                    << "Initial Solid IFA=0.5236\nEarth Pressure=constant\nEarth Pressure Coefficient=0.333\n"
-                                   << "Use Material Point Method=1\nElastic Modulus=1e7\nBoundary Type=wall\n"
+                                   << "Use Material Point Method=1\nYoung Modulus=1e7\nBoundary Type=wall\n"
                                    << "End Time=0.02\nTimestep=0.5\nPrecision=double\nCheckpoint Interval=0.008\n";
   const io::RunConfig cfg = io::RunConfig::load((dir / "scene.run").string(), talusRunKeys());
   const sim::Scene scene = sim::loadScene(cfg);

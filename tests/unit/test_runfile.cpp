@@ -345,10 +345,23 @@ TEST_F(RunFile, AccessorsRejectUndeclaredKeysAndWrongTypes) {
 
 TEST_F(RunFile, RegistryIntegerKeysRulesAndTable) {
   KeyRegistry r;
-  KeySpec n{"Particle Count", KeyType::Integer, "10", "-", 0, 1000, {}, "particles", "Misc", false, ""};
+  KeySpec n;
+  n.name = "Particle Count";
+  n.type = KeyType::Integer;
+  n.defaultValue = "10";
+  n.unit = "-";
+  n.min = 0;
+  n.max = 1000;
+  n.help = "particles";
+  n.section = "Misc";
   r.add(n);
   EXPECT_THROW(r.add(n), std::logic_error);  // declared twice
-  EXPECT_THROW(r.add(KeySpec{"Bad", KeyType::Choice, "x", "", 0, 1, {"a"}, "", "", false, ""}), std::logic_error);
+  KeySpec bad;
+  bad.name = "Bad";
+  bad.type = KeyType::Choice;
+  bad.defaultValue = "x";
+  bad.choices = {"a"};
+  EXPECT_THROW(r.add(bad), std::logic_error);  // default not among the choices
   const RunConfig c = RunConfig::fromText("particle count=20=2\n", dir(), r);
   EXPECT_EQ(c.integer("Particle Count"), 40);
   EXPECT_DOUBLE_EQ(c.real("Particle Count"), 40);
@@ -360,7 +373,7 @@ TEST_F(RunFile, RegistryIntegerKeysRulesAndTable) {
   }
   EXPECT_TRUE(contains(msg, "<text>:1: key 'Particle Count': value 2.5 is not an integer")) << msg;
   const std::string table = talusRunKeys().markdownTable();
-  EXPECT_EQ(table, talus::io::describeKeys(talusRunKeys()));
+  EXPECT_EQ(talus::io::describeKeys(talusRunKeys()).rfind(table, 0), 0u);  // the OpenLISEM table follows
   EXPECT_TRUE(contains(table, "### Numerics")) << table;
   EXPECT_TRUE(contains(table, "| `DEM` | map | (required) | m |")) << table;
   EXPECT_TRUE(contains(table, "| `CFL` | real | 0.5 | - | [0.01, 0.5] |")) << table;
