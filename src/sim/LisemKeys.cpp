@@ -7,7 +7,8 @@
 //   - inputs of those processes (maps, files, parameters): accepted and never read, as OpenLISEM
 //     does not read them either while their process is off (modelruninit.cpp, ModelRunLoadData);
 //   - settings without effect in Talus (device, memory, OpenLISEM's sub-step caps): a note;
-//   - output switches, not honoured yet: a note (RunConfigNotes.cpp).
+//   - output switches not honoured (hydrographs, totals, processes Talus lacks): a note
+//     (RunConfigNotes.cpp); the format and series switches are honoured (sim/Scene.cpp).
 // Keys Talus does not read are text keys: any value is accepted, as none is used. OpenLISEM's
 // defaults are quoted from parametermanager.h as its GUI writes them (QString::number).
 #include <string>
@@ -129,13 +130,19 @@ void addLisemKeys(KeyRegistry& r) {
       << process("Tree Instancing", "tree instancing (rigid-body physics)")
       << input("Friction Coefficient", "0.005", "rigid-body physics (Include Rigid-Body Phyisics)");
   // lines 219-238: output switches (Report every, line 226, is Talus's: RunKeys.cpp).
+  // The switches Talus honours (sim/Scene.cpp, seriesSelection): format, the series and which
+  // variables they hold (modelruninit.cpp 283-300, modelreport.cpp 410-465).
   Section o(r, "OpenLISEM Hazard outputs");
-  for (const char* name : {"Output GeoTIFF format", "Calculate Max per sub-step", "Output Max Height/Vel only",
-                           "Output totals", "Output hydrographs", "Output timeseries"})
+  o << lisem("0", flag("Output GeoTIFF format", "0",
+                       "OpenLISEM: maps as GeoTIFF (1) or PCRaster (0); used when Output Format is not given"))
+    << lisem("0", flag("Output timeseries", "0",
+                       "OpenLISEM: write the series selected below; used when Report Series is not given"));
+  for (const char* v : {"H", "HS", "HT (total height)", "SFRAC", "V", "VS", "HT (total averaged velocity)"})
+    o << lisem("0", flag(std::string("Output timeseries of ") + v, "0", "OpenLISEM: series of this variable"));
+  for (const char* name : {"Calculate Max per sub-step", "Output Max Height/Vel only", "Output totals", "Output hydrographs"})
     o << outputSwitch(name);
   o << outputSwitch("Report particles every", "1000");
-  for (const char* v : {"H", "HS", "HT (total height)", "SFRAC", "V", "VS", "HT (total averaged velocity)", "Infil",
-                        "GWH", "Soil Loss", "Sediment Load"})
+  for (const char* v : {"Infil", "GWH", "Soil Loss", "Sediment Load"})
     o << outputSwitch(std::string("Output timeseries of ") + v);
 }
 

@@ -147,6 +147,14 @@ void OutputWriter::writeMap(const std::string& name, const std::vector<double>& 
   io::writeRaster(claim(name + ext), r, format_);
 }
 
+void OutputWriter::writeMapAs(const std::string& fileName, const std::vector<double>& values) {
+  Raster r(dem_.grid, 0.0);
+  r.values = values;
+  r.valid = dem_.valid;
+  r.nodata = -9999.0;
+  io::writeRaster(claim(fileName), r, format_);
+}
+
 void OutputWriter::writeText(const std::string& name, const std::string& content) {
   writeFileAtomically(claim(name), content);
 }

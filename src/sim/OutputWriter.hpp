@@ -36,6 +36,9 @@ class OutputWriter {
   /// Writes `values` as map `name` (extension added by format). Cells outside the DEM's domain, and
   /// cells where `values` equals `nodataValue` when given, are written as nodata.
   void writeMap(const std::string& name, const std::vector<double>& values, const double* nodataValue = nullptr);
+  /// As writeMap, under the exact file name `fileName` (no extension added: OpenLISEM's series
+  /// names such as hf000000.012 carry their own).
+  void writeMapAs(const std::string& fileName, const std::vector<double>& values);
   /// Writes a text file atomically (temporary file, then rename).
   void writeText(const std::string& name, const std::string& content);
   /// Resuming: throws InputError (changing nothing) unless diagnostics.csv has `rows` complete rows.

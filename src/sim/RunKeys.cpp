@@ -159,6 +159,8 @@ void addOutputKeys(KeyRegistry& r) {
                                     KeyType::Directory))
       << choice("Output Format", {"geotiff", "pcraster"}, "geotiff", "raster format of the outputs")
       << flag("Report Series", "1", "write time-series maps every report (Timestep x Report every)")
+      << choice("Series Names", {"talus", "openlisem"}, "talus",
+                "series file names: series/hf_NNNN (report index) or OpenLISEM's hf000000.012 (model step)")
       << real("Checkpoint Interval", "0", "min", 0, 1e6,
               "simulated time between checkpoints for `talus run --resume` (0: none)")
       << real("Checkpoint Wall Interval", "10", "min", 0, 1e6,

@@ -282,8 +282,8 @@ Scene loadScene(const io::RunConfig& cfg) {
   s.precision = cfg.choice("Precision");
   s.device = cfg.text("Device");
   s.outputDir = cfg.directory("Output Directory");
-  s.format = cfg.choice("Output Format") == "pcraster" ? io::RasterFormat::PCRaster : io::RasterFormat::GeoTiff;
-  s.reportSeries = cfg.flag("Report Series");
+  s.format = outputFormat(cfg);
+  s.series = seriesSelection(cfg);
   s.checkpointInterval = minutesOnReportGrid(cfg.real("Checkpoint Interval"), s.reportInterval);
   s.checkpointWallInterval = 60.0 * cfg.real("Checkpoint Wall Interval");
   requireMemoryForRun(s, demKey.file);

@@ -9,6 +9,7 @@
 #include "flow/FlowSolver.hpp"
 #include "io/RasterIO.hpp"
 #include "io/RunConfig.hpp"
+#include "sim/OutputSelection.hpp"
 #include "sim/ParticleScene.hpp"
 
 namespace talus::sim {
@@ -29,7 +30,7 @@ struct Scene {
   std::string device;            ///< device selector ("" = automatic)
   std::string outputDir;         ///< absolute
   io::RasterFormat format = io::RasterFormat::GeoTiff;
-  bool reportSeries = true;
+  SeriesSelection series;  ///< which series maps, under which names (sim/OutputSelection.hpp)
   double checkpointInterval = 0;      ///< simulated seconds between checkpoints (0: none)
   double checkpointWallInterval = 0;  ///< wall seconds between checkpoints (0: none)
   /// What loading noticed but did not refuse (maps of processes that are off, extra raster bands,

@@ -61,38 +61,55 @@ double Simulation::speedThickness() const {
 
 void Simulation::writeReport() {
   const int index = reportIndex_++;
-  if (!scene_.reportSeries) return;
+  const SeriesSelection& sel = scene_.series;
+  if (!sel.any) return;
   // Series of each phase the scene can hold: a dry granular run writes no all-zero fluid series
   // (fluid appears only from the initial water or from particles releasing what they hold).
   std::vector<std::string> names;
-  auto name = [&](const char* phase) {
-    char text[64];
-    std::snprintf(text, sizeof text, "series/%s_%04d", phase, index);
-    names.push_back(text);
-    return names.back();
+  auto write = [&](const char* prefix, const std::vector<double>& values) {
+    const std::string name = seriesName(sel, prefix, index);
+    if (sel.lisemNames) out_->writeMapAs(name, values);
+    else out_->writeMap(name, values);
+    names.push_back(name);
   };
   const double hDry = speedThickness();
-  if (fluidSeries_) {
-    const std::vector<double> h = solver_->h();
-    out_->writeMap(name("hf"), h);
-    out_->writeMap(name("vf"), speedMap(h, solver_->qx(), solver_->qy(), hDry));
-  }
-  if (solver_->twoPhase()) {
-    const std::vector<double> hs = solver_->hs();
-    out_->writeMap(name("hs"), hs);
-    out_->writeMap(name("vs"), solidSpeedMap(hs, solver_->qsx(), solver_->qsy(), hDry,
-                                             scene_.settings.debris.filmThickness));
+  const bool twoPhase = solver_->twoPhase();
+  std::vector<double> h, hs;
+  if (fluidSeries_ || sel.ht || sel.vt || sel.sf) h = solver_->h();
+  if (twoPhase) hs = solver_->hs();
+  if (fluidSeries_ && sel.hf) write("hf", h);
+  if (fluidSeries_ && sel.vf) write("vf", speedMap(h, solver_->qx(), solver_->qy(), hDry));
+  if (twoPhase && sel.hs) write("hs", hs);
+  if (twoPhase && sel.vs)
+    write("vs", solidSpeedMap(hs, solver_->qsx(), solver_->qsy(), hDry, scene_.settings.debris.filmThickness));
+  if (twoPhase && (sel.sf || sel.ht || sel.vt)) {
+    std::vector<double> total(h.size()), fraction(h.size(), 0.0), speed(h.size(), 0.0);
+    const std::vector<double> vf = speedMap(h, solver_->qx(), solver_->qy(), hDry);
+    const std::vector<double> vs =
+        solidSpeedMap(hs, solver_->qsx(), solver_->qsy(), hDry, scene_.settings.debris.filmThickness);
+    for (std::size_t k = 0; k < h.size(); ++k) {
+      total[k] = h[k] + hs[k];
+      if (total[k] > 0) {
+        fraction[k] = hs[k] / total[k];
+        // The thickness-averaged speed its label names (OpenLISEM's code writes h_s v_s + h_f v_f,
+        // modelreport.cpp line 459, which is a discharge, not a velocity).
+        speed[k] = (hs[k] * vs[k] + h[k] * vf[k]) / total[k];
+      }
+    }
+    if (sel.sf) write("sf", fraction);
+    if (sel.ht) write("ht", total);
+    if (sel.vt) write("vt", speed);
   }
   if (particles_) {
     char pName[64];
     std::snprintf(pName, sizeof pName, "particles/particles_%04d.gpkg", index);
     particles_->writeLayer(out_->claim(pName));
   }
-  // index.csv: index, time, then the thickness and speed maps of the first phase written.
+  // index.csv: index, time, then every series map written at this time.
   std::ostringstream line;
   line.precision(12);
   line << index << "," << solver_->time();
-  for (std::size_t n = 0; n < std::min<std::size_t>(2, names.size()); ++n) line << "," << names[n];
+  for (const std::string& n : names) line << "," << n;
   line << "\n";
   seriesIndex_ += line.str();
   out_->writeText("series/index.csv", seriesIndex_);

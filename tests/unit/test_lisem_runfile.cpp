@@ -222,17 +222,58 @@ TEST_F(LisemRunFile, FullRunFileWithInitialSolidsLoadsAndRuns) {
   EXPECT_FALSE(contains(notes, "Building Cover")) << notes;
   EXPECT_TRUE(contains(notes, "5 OpenLISEM Hazard settings have no effect in Talus (it chooses its own steps and device): 5 more at "
                                    "OpenLISEM's defaults")) << notes;
-  EXPECT_TRUE(contains(notes, "18 OpenLISEM Hazard output switches are not honoured yet")) << notes;
+  // 9: the format and series switches are honoured (sim/OutputSelection.hpp), the hydrograph,
+  // totals and particle-report switches and the series of processes Talus lacks are not.
+  EXPECT_TRUE(contains(notes, "9 OpenLISEM Hazard output switches are not honoured yet")) << notes;
   EXPECT_EQ(cfg.warnings().size(), 2u) << notes;
 
   const talus::sim::Scene scene = talus::sim::loadScene(cfg);
   EXPECT_DOUBLE_EQ(scene.reportInterval, 1.0);
   EXPECT_TRUE(scene.settings.twoPhase);
+  // OpenLISEM's defaults Output GeoTIFF format=0 and Output timeseries=0: PCRaster maps, no series.
+  EXPECT_EQ(scene.format, talus::io::RasterFormat::PCRaster);
+  EXPECT_FALSE(scene.series.any);
   talus::sim::Simulation sim(scene, cfg, "", talus::sim::OutputMode::New);
   const talus::sim::RunSummary s = sim.run();
   EXPECT_NEAR(s.simulatedSeconds, 2.0, 1e-9);
   EXPECT_LT(s.volumeBalanceError, 1e-4);
   EXPECT_TRUE(fs::exists(path("res/summary.json")));
+  EXPECT_TRUE(fs::exists(path("res/hsfinal.map")));
+  EXPECT_TRUE(fs::exists(path("res/vsfinal.map")));
+  EXPECT_FALSE(fs::exists(path("res/series/hs_0000.map")));
+}
+
+// OpenLISEM's series switches select the variables, and Series Names=openlisem names them as its
+// WriteMapSeries does (lisem/io/iogdal.h: prefix padded to 7 characters, the model step with a dot
+// after its first digit): at Timestep 0.5 s and Report every 2, report 1 is step 2, hs000000.002.
+TEST_F(LisemRunFile, OutputSwitchesSelectTheSeriesAndTheirNames) {
+  writeMaps();
+  auto changes = solidsOn();
+  changes["Output timeseries"] = "1";
+  changes["Output timeseries of HS"] = "1";
+  changes["Output timeseries of VS"] = "1";
+  changes["Output timeseries of HT (total height)"] = "1";
+  changes["Output GeoTIFF format"] = "1";
+  changes["Timestep"] = "0.5";
+  changes["Report every"] = "2";
+  RunConfig cfg = load(changes);
+  cfg.set("Series Names=openlisem");
+  const talus::sim::Scene scene = talus::sim::loadScene(cfg);
+  EXPECT_EQ(scene.format, talus::io::RasterFormat::GeoTiff);
+  ASSERT_TRUE(scene.series.any);
+  EXPECT_TRUE(scene.series.hs && scene.series.vs && scene.series.ht);
+  EXPECT_FALSE(scene.series.hf || scene.series.vf || scene.series.sf || scene.series.vt);
+  EXPECT_EQ(talus::sim::seriesName(scene.series, "hs", 1), "hs000000.002");
+  EXPECT_EQ(talus::sim::seriesName(scene.series, "vs", 500), "vs000001.000");
+  talus::sim::Simulation sim(scene, cfg, "", talus::sim::OutputMode::New);
+  sim.run();
+  for (const char* f : {"res/hs000000.000", "res/vs000000.002", "res/ht000000.004", "res/hsfinal.tif"})
+    EXPECT_TRUE(fs::exists(path(f))) << f;
+  EXPECT_FALSE(fs::exists(path("res/hf000000.002")));
+  // ht is the total thickness: on this dry scene it equals hs at every cell.
+  const talus::Raster hs = talus::io::readRaster(path("res/hs000000.002"));
+  const talus::Raster ht = talus::io::readRaster(path("res/ht000000.002"));
+  for (std::size_t k = 0; k < hs.values.size(); ++k) EXPECT_EQ(hs.values[k], ht.values[k]) << k;
 }
 
 TEST_F(LisemRunFile, ReportEveryMultipliesTheTimestep) {

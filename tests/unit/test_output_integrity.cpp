@@ -9,6 +9,7 @@
 #include <sys/file.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -76,13 +77,22 @@ TEST(FileWrite, AFullDiskIsAnIoErrorWithTheSystemsReason) {
   EXPECT_THROW(talus::writeFileAtomically("/nonexistent-talus-folder/summary.json", "{}"), talus::IoError);
 }
 
-// A file-size limit of 8 KiB (ulimit -f counts 512-byte blocks) lets the run start (run-file echo,
-// first maps) and stops diagnostics.csv after a few dozen rows: the run must end with exit status
-// 5 and the system's reason, leave no temporary file, and still write the maxima and a summary
-// that says "failed" and why (they are small enough to fit).
+// A file-size limit above every file a short run writes (measured by a first run) but below what
+// diagnostics.csv reaches in a longer one (a row per step): the run starts and stops mid-run when
+// the CSV hits the limit. It must end with exit status 5 and the system's reason, leave no
+// temporary file, and still write the maxima and a summary that says "failed" and why (they are
+// small enough to fit).
 TEST_F(OutputIntegrity, AWriteRefusedMidRunEndsTheRunAsAnIoFailure) {
   talus::test::writeCliScene(dir_, "Report Series=0\n");
-  const Outcome r = talus("run case.run --set \"End Time=0.5\"", "ulimit -f 16; trap '' XFSZ;");
+  ASSERT_EQ(talus("run case.run --set \"End Time=0.01\"").status, 0);
+  std::uintmax_t largest = 0;
+  for (const auto& e : fs::recursive_directory_iterator(dir_ / "out"))
+    if (e.is_regular_file() && e.path().filename() != "diagnostics.csv")
+      largest = std::max<std::uintmax_t>(largest, fs::file_size(e.path()));
+  const std::uintmax_t blocks = (largest + 4096) / 512 + 1;  // ulimit -f counts 512-byte blocks
+  fs::remove_all(dir_ / "out");
+  const Outcome r = talus("run case.run --set \"End Time=0.5\"",
+                          "ulimit -f " + std::to_string(blocks) + "; trap '' XFSZ;");
   EXPECT_EQ(r.status, 5) << r;
   EXPECT_TRUE(contains(r.err, "I/O error")) << r;
   EXPECT_TRUE(contains(r.err, "File too large")) << r;
