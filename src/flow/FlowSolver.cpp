@@ -67,6 +67,8 @@ FlowSolver::FlowSolver(compute::Context& ctx, const Grid& grid, const FlowSettin
       hMax_(ctx, grid.cells(), "h max"),
       vMax_(ctx, grid.cells(), "v max"),
       arrival_(ctx, grid.cells(), "arrival"),
+      infiltration_(ctx, grid.cells(), "infiltration capacity"),
+      sink_(ctx, grid.cells(), "infiltrated depth"),
       reducer_(ctx) {
   if (grid.nx < 1 || grid.ny < 1 || !(grid.dx > 0)) throw InputError("flow solver needs a grid of at least 1x1 cells");
   if (!(settings.cfl > 0 && settings.cfl <= 0.5)) throw InputError("CFL must lie in (0, 0.5] (positivity)");
@@ -77,6 +79,8 @@ FlowSolver::FlowSolver(compute::Context& ctx, const Grid& grid, const FlowSettin
   track_ = compute::Kernel(ctx.program("flow/track.cl", opts), "flow_track_maxima");
   diagnostics_ = compute::Kernel(ctx.program("flow/diagnostics.cl", opts), "flow_tile_diagnostics");
   compact_ = compute::Kernel(ctx.program("flow/diagnostics.cl", opts), "flow_compact_tiles");
+  sources_ = compute::Kernel(ctx.program("flow/water_sources.cl", opts), "flow_sources");
+  infiltration_.fill(0.0);
   if (ctx.precision() == compute::Precision::Double)
     writeParams<double>(params_, grid, tilesX_, tilesY_, settings);
   else
@@ -96,6 +100,8 @@ void FlowSolver::setInput(const FlowInput& in, double startTime) {
   need(in.manning.size(), "manning");
   need(in.h.size(), "h");
   mask_.write(in.mask);
+  domainCells_ = 0;
+  for (uint8_t m : in.mask) domainCells_ += m ? 1 : 0;
   // Outside cells carry no water; their bed value is never read.
   std::vector<double> h = in.h, bed = in.bed;
   for (std::size_t k = 0; k < n; ++k)
@@ -167,8 +173,28 @@ double FlowSolver::stableDt() const {
   return settings_.cfl * grid_.dx / diag_.maxSpeed;
 }
 
-void FlowSolver::step(double dt) {
+void FlowSolver::setInfiltration(const std::vector<double>& rate) {
+  if (rate.empty()) {
+    infiltration_.fill(0.0);
+    hasInfiltration_ = false;
+    return;
+  }
+  if (settings_.twoPhase) throw InputError("infiltration is modelled for the single-phase (water) model only");
+  if (rate.size() != grid_.cells())
+    throw InputError("infiltration map has " + std::to_string(rate.size()) + " values, the grid has " +
+                     std::to_string(grid_.cells()));
+  for (double f : rate)
+    if (!(f >= 0) || !std::isfinite(f)) throw InputError("infiltration capacity must be finite and >= 0");
+  infiltration_.upload(rate);
+  hasInfiltration_ = true;
+}
+
+void FlowSolver::step(double dt, double rainDepth) {
   if (!(dt > 0) || !std::isfinite(dt)) throw SimulationError("flow step with invalid dt " + std::to_string(dt));
+  if (!(rainDepth >= 0) || !std::isfinite(rainDepth))
+    throw SimulationError("flow step with invalid rain depth " + std::to_string(rainDepth));
+  if (rainDepth > 0 && settings_.twoPhase)
+    throw InputError("rainfall is modelled for the single-phase (water) model only");
   if (settings_.twoPhase) {
     enqueueDebrisStage(true, dt);
     enqueueDebrisStage(false, dt);
@@ -177,9 +203,31 @@ void FlowSolver::step(double dt) {
     enqueueStage(h1_, qx1_, qy1_, h_, qx_, qy_, dt, 0.5, false);
     if (hasFriction_) enqueueFriction(dt);
   }
+  const bool sources = rainDepth > 0 || hasInfiltration_;
+  const double infiltrated = sources ? enqueueSources(dt, rainDepth) : 0.0;
+  // Rain wets dry tiles, which the active list may not hold: the diagnostics then look at every
+  // tile and find the wet ones (infiltration only dries cells, so the list still covers the water).
+  if (rainDepth > 0) activateAllTiles();
   time_ += dt;
   enqueueTrackMaxima();
   computeDiagnostics();
+  diag_.rain = rainDepth * static_cast<double>(domainCells_) * grid_.dx * grid_.dx;
+  diag_.infiltrated = infiltrated;
+}
+
+void FlowSolver::applySources(double dt, double rainDepth) {
+  const double infiltrated = enqueueSources(dt, rainDepth);
+  if (rainDepth > 0) activateAllTiles();
+  computeDiagnostics();
+  diag_.rain = rainDepth * static_cast<double>(domainCells_) * grid_.dx * grid_.dx;
+  diag_.infiltrated = infiltrated;
+}
+
+double FlowSolver::enqueueSources(double dt, double rainDepth) {
+  sources_.bind(params_, mask_, infiltration_, compute::RealArg{rainDepth}, compute::RealArg{dt}, h_, qx_, qy_, sink_);
+  const compute::Range global{static_cast<std::size_t>(tilesX_) * kTile, static_cast<std::size_t>(tilesY_) * kTile};
+  sources_.launch(global, kLocal2D, "flow_sources");
+  return hasInfiltration_ ? reducer_.sum(sink_, grid_.cells()) * grid_.dx * grid_.dx : 0.0;
 }
 
 void FlowSolver::enqueueStage(const compute::RealBuffer& hSt, const compute::RealBuffer& qxSt,

@@ -2,7 +2,8 @@
 // One step is a short list of named phases:
 //   stage 1: U1 = U0 + dt L(U0)                   (flow_stage: reconstruction, fluxes, update)
 //   stage 2: U0 = U0/2 + (U1 + dt L(U1))/2        (SSP-RK2)
-//   friction (semi-implicit Manning) -> maxima -> diagnostics and next active tiles.
+//   friction (semi-implicit Manning) -> sources (rain, infiltration) -> maxima -> diagnostics and
+//   next active tiles.
 #pragma once
 #include <cstdint>
 #include <functional>
@@ -49,6 +50,8 @@ struct FlowDiagnostics {
   double kineticVertical = 0;  ///< two-phase: sum m (u.grad b)^2 / 2, the vertical motion along the bed [J]
   double maxFlowSpeed = 0;     ///< max material speed |u| (either phase) of layers above Minimum Flow Height [m/s]
   double maxWaveSpeedWet = 0;  ///< maxSpeed over cells with a layer above Minimum Flow Height [m/s]
+  double rain = 0;             ///< rain volume added in the last step [m^3] (docs/sources.md)
+  double infiltrated = 0;      ///< volume infiltrated in the last step [m^3]
 };
 
 /// Running maxima of the two-phase model (spec §8).
@@ -65,8 +68,16 @@ class FlowSolver {
   void setInput(const FlowInput& in, double startTime = 0.0);
   /// The CFL time step of the current state (infinite when everything is at rest and dry).
   double stableDt() const;
-  /// Advances by dt (caller keeps dt <= stableDt()).
-  void step(double dt);
+  /// Advances by dt (caller keeps dt <= stableDt()); `rainDepth` [m] is the uniform rain depth that
+  /// falls on every domain cell during the step (the step's integral of the intensity), added after
+  /// the flux update together with the infiltration of setInfiltration() (docs/sources.md).
+  void step(double dt, double rainDepth = 0.0);
+  /// Constant-rate infiltration capacity per cell [m/s] (empty: none). Single-phase model only.
+  void setInfiltration(const std::vector<double>& rate);
+  bool hasInfiltration() const { return hasInfiltration_; }
+  /// Only the sources phase of step() (rain depth [m], infiltration over dt [s]) on the current
+  /// state, then the diagnostics; the time does not advance (for tests of the source kernel).
+  void applySources(double dt, double rainDepth);
 
   double time() const { return time_; }
   void setTime(double t) { time_ = t; }
@@ -127,6 +138,9 @@ class FlowSolver {
                      double a, bool firstStage);
   void enqueueFriction(double dt);
   void enqueueTrackMaxima();
+  /// Rain and infiltration over the whole grid (kernels/flow/water_sources.cl); returns the
+  /// infiltrated volume [m^3].
+  double enqueueSources(double dt, double rainDepth);
   void computeDiagnostics();
   /// Lists every tile as active, so the next diagnostics find the wet tiles anywhere.
   void activateAllTiles();
@@ -149,11 +163,14 @@ class FlowSolver {
   compute::Buffer<uint8_t> mask_;
   compute::Buffer<int> tileActive_, tileWet_, tileList_, tileCount_;
   int activeTiles_ = 0;
+  bool hasInfiltration_ = false;
+  std::size_t domainCells_ = 0;  ///< cells inside the domain (the rain volume is rainDepth x these x dx^2)
   bool hasFriction_ = true;  ///< false when Manning's n is zero everywhere: friction is not launched
   compute::RealBuffer bed_, gp_, gn_, manning_, slopeSpeed_;
   compute::RealBuffer h_, qx_, qy_, h1_, qx1_, qy1_;
   compute::RealBuffer outStep_, partial_;
   compute::RealBuffer hMax_, vMax_, arrival_;
+  compute::RealBuffer infiltration_, sink_;  ///< capacity [m/s] and the last step's infiltrated depth [m]
   compute::Reducer reducer_;
   // Two-phase model: solid state (6 components, see kernels/flow/debris_stage.cl) at the start of
   // the step and after stage 1, static-solid flags, static maps, maxima.
@@ -164,7 +181,7 @@ class FlowSolver {
   compute::RealBuffer particleBed_, bedImpulse_;
   compute::Buffer<uint8_t> lock0_, lock1_;
   compute::Kernel debrisStage_, debrisTrack_, debrisDiagnostics_;
-  compute::Kernel stage_, friction_, track_, diagnostics_, compact_;
+  compute::Kernel stage_, friction_, track_, diagnostics_, compact_, sources_;
   /// Global range covering the active tiles: one work-group of kTile x kTile per tile.
   compute::Range tileRange() const;
 };

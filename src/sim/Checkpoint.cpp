@@ -10,8 +10,10 @@
 namespace talus::sim {
 namespace {
 
-// Version 2 adds the particle state; version 1 files (no particles) still read.
-constexpr char kMagic[8] = {'T', 'A', 'L', 'U', 'S', 'C', 'K', '2'};
+// Version 3 adds the cumulative rain and infiltration, version 2 the particle state; version 1
+// and 2 files still read (no rain, no infiltration; version 1 no particles either).
+constexpr char kMagic[8] = {'T', 'A', 'L', 'U', 'S', 'C', 'K', '3'};
+constexpr char kMagicV2[8] = {'T', 'A', 'L', 'U', 'S', 'C', 'K', '2'};
 constexpr char kMagicV1[8] = {'T', 'A', 'L', 'U', 'S', 'C', 'K', '1'};
 
 template <class T>
@@ -55,6 +57,8 @@ void writeCheckpoint(const std::string& path, const Checkpoint& c) {
   put(o, c.reportIndex);
   put(o, c.initialVolume);
   put(o, c.totalOutflow);
+  put(o, c.totalRain);
+  put(o, c.totalInfiltrated);
   put(o, c.elapsedWall);
   putString(o, c.seriesIndex);
   putString(o, std::string(c.state.begin(), c.state.end()));
@@ -67,10 +71,12 @@ Checkpoint readCheckpoint(const std::string& path) {
   Reader r{std::ifstream(path, std::ios::binary), path};
   if (!r.in) throw InputError("no checkpoint '" + path + "' (was the run started with a checkpoint interval?)");
   char magic[8];
-  if (!r.in.read(magic, sizeof magic) ||
-      (std::memcmp(magic, kMagic, sizeof magic) != 0 && std::memcmp(magic, kMagicV1, sizeof magic) != 0))
-    throw InputError("'" + path + "' is not a Talus checkpoint");
+  if (!r.in.read(magic, sizeof magic)) throw InputError("'" + path + "' is not a Talus checkpoint");
   const bool v1 = std::memcmp(magic, kMagicV1, sizeof magic) == 0;
+  const bool v2 = std::memcmp(magic, kMagicV2, sizeof magic) == 0;
+  if (!v1 && !v2 && std::memcmp(magic, kMagic, sizeof magic) != 0)
+    throw InputError("'" + path + "' is not a Talus checkpoint");
+  const char* version = v1 ? kMagicV1 : v2 ? kMagicV2 : kMagic;
   Checkpoint c;
   c.precision = r.getString(16);
   c.nx = r.get<int32_t>();
@@ -80,6 +86,10 @@ Checkpoint readCheckpoint(const std::string& path) {
   c.reportIndex = r.get<int32_t>();
   c.initialVolume = r.get<double>();
   c.totalOutflow = r.get<double>();
+  if (!v1 && !v2) {
+    c.totalRain = r.get<double>();
+    c.totalInfiltrated = r.get<double>();
+  }
   c.elapsedWall = r.get<double>();
   c.seriesIndex = r.getString(1ull << 30);
   const std::string state = r.getString(1ull << 40);
@@ -88,7 +98,7 @@ Checkpoint readCheckpoint(const std::string& path) {
     const std::string particles = r.getString(1ull << 40);
     c.particleState.assign(particles.begin(), particles.end());
   }
-  if (!r.in.read(magic, sizeof magic) || std::memcmp(magic, v1 ? kMagicV1 : kMagic, sizeof magic) != 0) r.fail();
+  if (!r.in.read(magic, sizeof magic) || std::memcmp(magic, version, sizeof magic) != 0) r.fail();
   return c;
 }
 

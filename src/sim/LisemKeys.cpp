@@ -51,7 +51,6 @@ KeySpec outputSwitch(std::string name, std::string lisemDefault = "0") {
   return unread(KeyRole::OutputSwitch, std::move(name), std::move(lisemDefault), "OpenLISEM output switch");
 }
 
-const char* kRain = "rainfall (Include Rainfall)";
 const char* kHydrology = "hydrology (Include Hydrology)";
 const char* kEvapo = "evapotranspiration (Include Evapotranspiration)";
 const char* kChannel = "channel flow (Include Channel)";
@@ -66,9 +65,6 @@ void addLisemKeys(KeyRegistry& r) {
   Section(r, "OpenLISEM Hazard processes and settings")
       << noEffect("Timestep Flow", "1", "cap on OpenLISEM's flow step; Talus's flow step follows from CFL")
       << noEffect("Timestep Particle Flow", "0.001", "OpenLISEM's particle step; Talus's follows from Particle CFL")
-      << input("TimeInput Directory", "<site>/time/", kRain)
-      << process("Include Rainfall", "rainfall", true)
-      << process("Include Infiltration", "infiltration", true)
       << process("Include Hydrology", "hydrology (infiltration and surface storage)", true)
       << input("Custom Infiltration", "0", kHydrology)
       << process("Include Evapotranspiration", "evapotranspiration")
@@ -91,8 +87,8 @@ void addLisemKeys(KeyRegistry& r) {
       << input("Custom Channel Slope", "1", kChannel)
       << input("Initial Stability Margin", "0.005", "initial slope stability (Include Initial Stability)");
   // lines 125-206: time series files and maps of processes Talus does not model.
+  // Rainfall, TimeInput Directory, KSatSimple and their switches are Talus's (RunKeys.cpp).
   Section s(r, "OpenLISEM Hazard inputs");
-  s << input("Rainfall", "rain", kRain);
   for (const char* f : {"Temperature:temp", "Radiation:rad", "Wind:wind", "Vapor Pressure:vap", "ndvi:ndvi"}) {
     const std::string pair = f;
     s << input(pair.substr(0, pair.find(':')), pair.substr(pair.find(':') + 1), kEvapo);
@@ -106,8 +102,7 @@ void addLisemKeys(KeyRegistry& r) {
     << input("SMAX Surface", "smaxsurface.map", kHydrology) << input("SMAX Canopy", "smaxcanopy.map", kHydrology)
     << input("CropF", "cropf.map", kEvapo) << input("Tree Density", "treedens.map", kTrees)
     << input("Tree Length", "treelength.map", kTrees) << input("Tree Radius", "treeradius.map", kTrees)
-    << input("Tree Count", "treecount.map", kTrees)
-    << input("KSatSimple", "ksatsimple.map", "infiltration (Include Infiltration)");
+    << input("Tree Count", "treecount.map", kTrees);
   for (const char* m : {"KSatBottom:ksatbottom", "Clay:clay", "Sand:sand", "Gravel:gravel", "Organic:om",
                         "Density:density", "MatricSuction:psi", "Porosity:thetas", "A:a", "B:b",
                         "Soil Depth:soildepth", "Ground Water Height:gwh", "Theta Initial:thetaieff"}) {

@@ -136,6 +136,23 @@ void addFlowKeys(KeyRegistry& r) {
                 "depth-pressure gravity g_p = g cos^2(theta) (lake at rest exact) or g cos^4(theta)");
 }
 
+/// Rainfall and infiltration (docs/sources.md), with OpenLISEM Hazard's names and units
+/// (parametermanager.h lines 76-85, 125, 161; modelruninit.cpp lines 24, 236, 252, 382, 738).
+void addSourceKeys(KeyRegistry& r) {
+  Section(r, "Rain and infiltration")
+      << lisem("0", flag("Include Rainfall", "0", "rain on every domain cell (single-phase model)"))
+      << lisem("<site>/time/", text("TimeInput Directory", "", "folder holding the rainfall file (relative to the "
+                                    "run-file's folder)", KeyType::Directory))
+      << lisem("rain", readWhen("Include Rainfall", text("Rainfall", "rain",
+                                "rainfall file in OpenLISEM's format (one station, minutes and mm/h), in "
+                                "TimeInput Directory; not read when Rainfall Intensity is given")))
+      << readWhen("Include Rainfall", real("Rainfall Intensity", "0", "mm/h", 0, 1e4,
+                                           "uniform constant intensity; when given it replaces the Rainfall file"))
+      << lisem("0", flag("Include Infiltration", "0", "constant-rate infiltration of KSatSimple (single-phase model)"))
+      << lisem("ksatsimple.map", readWhen("Include Infiltration", map("KSatSimple", "0", "mm/h", 0, 1e5,
+                                          "infiltration capacity (saturated conductivity of the top soil)")));
+}
+
 void addNumericsKeys(KeyRegistry& r) {
   Section(r, "Numerics")
       << real("CFL", "0.5", "-", 0.01, 0.5,
@@ -174,6 +191,7 @@ KeyRegistry buildKeys() {
   addParticleKeys(r);
   addTimeKeys(r);
   addFlowKeys(r);
+  addSourceKeys(r);
   addNumericsKeys(r);
   addOutputKeys(r);
   addLisemKeys(r);

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <filesystem>
 #include <sstream>
 #include <utility>
 
@@ -110,6 +112,41 @@ void setElasticity(const io::RunConfig& cfg, particles::ParticleSettings& ps) {
                      " Pa with Young Modulus " + io::formatNumber(ps.youngModulus) + " Pa gives Poisson ratio " +
                      io::formatNumber(ps.poisson) + ", not below 0.5: the shear modulus must exceed E/3 "
                      "(or give the bulk modulus as Elastic Modulus, OpenLISEM's meaning)");
+}
+
+/// Rainfall and infiltration (docs/sources.md), read only while their switches are on, as OpenLISEM
+/// does (modelruninit.cpp lines 24, 252, 382). Both act on the water of the single-phase model.
+void loadSources(const io::RunConfig& cfg, const MapLoader& loadMap, Scene& s) {
+  if (cfg.flag("Include Rainfall")) {
+    if (!cfg.isDefault("Rainfall Intensity")) {
+      s.rainfall = io::Rainfall::uniform(cfg.real("Rainfall Intensity"));
+    } else {
+      // OpenLISEM writes files with a multiplier, "Rainfall=rain=1" (SaveToRunFile); it scales the
+      // intensities (modelruninit.cpp line 24, GetMapMult).
+      std::string file = cfg.text("Rainfall");
+      double mult = 1.0;
+      const std::size_t eq = file.rfind('=');
+      if (eq != std::string::npos) {
+        char* end = nullptr;
+        const std::string m = file.substr(eq + 1);
+        const double v = std::strtod(m.c_str(), &end);
+        if (!m.empty() && end != nullptr && *end == '\0' && std::isfinite(v) && v >= 0) mult = v, file = file.substr(0, eq);
+      }
+      if (!std::filesystem::path(file).is_absolute())
+        file = (std::filesystem::path(cfg.directory("TimeInput Directory")) / file).lexically_normal().string();
+      const io::Rainfall read = io::readRainfallFile(file);
+      std::vector<double> scaled = read.intensities();
+      for (double& v : scaled) v *= mult;
+      s.rainfall = io::Rainfall(read.times(), scaled);
+    }
+  }
+  if (cfg.flag("Include Infiltration")) {
+    s.infiltration = loadMap("KSatSimple");
+    for (double& f : s.infiltration) f /= 3600.0 * 1000.0;  // mm/h -> m/s (modelruninit.cpp line 738)
+  }
+  if (s.settings.twoPhase && (!s.rainfall.empty() || !s.infiltration.empty()))
+    throw InputError(cfg.sourceName() + ": Include Rainfall and Include Infiltration act on the water of the "
+                     "single-phase model; this scene has solids (two-phase model), which Talus does not rain on yet");
 }
 
 }  // namespace
@@ -286,6 +323,7 @@ Scene loadScene(const io::RunConfig& cfg) {
   s.series = seriesSelection(cfg);
   s.checkpointInterval = minutesOnReportGrid(cfg.real("Checkpoint Interval"), s.reportInterval);
   s.checkpointWallInterval = 60.0 * cfg.real("Checkpoint Wall Interval");
+  loadSources(cfg, loadMap, s);
   requireMemoryForRun(s, demKey.file);
   return s;
 }
@@ -297,6 +335,8 @@ void requireMaterial(const Scene& s, const io::RunConfig& cfg) {
     return false;
   };
   if (anyInside(s.flow.h) || anyInside(s.flow.hs) || !s.particles.seeded.x.empty()) return;
+  for (double i : s.rainfall.intensities())
+    if (i > 0) return;  // rain brings its own water
   auto state = [&](const char* process, const char* map) {
     return cfg.flag(process) ? std::string("'") + map + "' is 0 in every cell of the DEM's domain"
                              : std::string("'") + process + "' is 0";

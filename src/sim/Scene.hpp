@@ -7,6 +7,7 @@
 #include "core/Raster.hpp"
 #include "flow/FlowSettings.hpp"
 #include "flow/FlowSolver.hpp"
+#include "io/RainfallFile.hpp"
 #include "io/RasterIO.hpp"
 #include "io/RunConfig.hpp"
 #include "sim/OutputSelection.hpp"
@@ -20,6 +21,8 @@ struct Scene {
   flow::FlowInput flow;          ///< initial fields for the flow solver
   flow::FlowSettings settings;
   ParticleScene particles;       ///< hybrid mode: structured solids as particles
+  io::Rainfall rainfall;         ///< uniform rain intensity in time (empty: no rain; docs/sources.md)
+  std::vector<double> infiltration;  ///< constant-rate infiltration capacity [m/s] (empty: none)
   double startTime = 0;          ///< [s]
   double endTime = 60;           ///< [s]
   double reportInterval = 10;    ///< [s]

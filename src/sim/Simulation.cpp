@@ -17,7 +17,7 @@ constexpr const char* kCsvHeader =
     "step,time_s,dt_s,volume_m3,outflow_m3,cumulative_outflow_m3,balance_error,kinetic_energy_J,max_wave_speed_m_s,"
     "fluid_volume_m3,solid_volume_m3,fluid_outflow_m3,solid_outflow_m3,"
     "potential_energy_J,vertical_kinetic_J,energy_released_J,energy_lost_J,"
-    "particles,particle_mass_kg,particle_outflow_kg,particle_kinetic_J,wall_s";
+    "particles,particle_mass_kg,particle_outflow_kg,particle_kinetic_J,cumulative_rain_m3,cumulative_infiltrated_m3,wall_s";
 
 /// Total volume (both phases) and total outflow of the last step.
 double totalVolume(const flow::FlowDiagnostics& d) { return d.volume + d.volumeSolid; }
@@ -32,6 +32,7 @@ Simulation::Simulation(const Scene& scene, const io::RunConfig& config, const st
   ctx_ = compute::Context::create(scene.device, compute::parsePrecision(scene.precision));
   solver_ = std::make_unique<flow::FlowSolver>(*ctx_, scene.dem.grid, scene.settings);
   solver_->setInput(scene.flow, scene.startTime);
+  solver_->setInfiltration(scene.infiltration);
   if (scene.particles.enabled && !scene.particles.seeded.x.empty()) {
     // The particles' material counts for the energy bound too: its confined water may be released
     // onto the grid and fall from where the particles stand.
@@ -88,6 +89,8 @@ Simulation::Simulation(const Scene& scene, const io::RunConfig& config, const st
   reportIndex_ = c.reportIndex;
   initialVolume_ = c.initialVolume;
   totalOutflow_ = c.totalOutflow;
+  totalRain_ = c.totalRain;
+  totalInfiltrated_ = c.totalInfiltrated;
   wallBefore_ = c.elapsedWall;
   seriesIndex_ = c.seriesIndex;
   out_->prepare();
@@ -104,6 +107,8 @@ void Simulation::writeCheckpoint(double wallSeconds) {
   c.reportIndex = reportIndex_;
   c.initialVolume = initialVolume_;
   c.totalOutflow = totalOutflow_;
+  c.totalRain = totalRain_;
+  c.totalInfiltrated = totalInfiltrated_;
   c.elapsedWall = wallSeconds;
   c.seriesIndex = seriesIndex_;
   c.state = solver_->saveState();
@@ -130,6 +135,12 @@ std::string Simulation::particleCost() {
 
 double Simulation::wall() const {
   return wallBefore_ + std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+}
+
+double Simulation::volumeBalance(double volume) const {
+  // Sources and sinks: V_0 + rain = V + outflow + infiltrated when volume is conserved.
+  const double supplied = initialVolume_ + totalRain_;
+  return supplied > 0 ? (volume + totalOutflow_ + totalInfiltrated_ - supplied) / supplied : 0.0;
 }
 
 RunSummary Simulation::run(const std::function<void(const Progress&)>& onProgress) {
@@ -166,7 +177,9 @@ Progress Simulation::stepOnce() {
   double dt = solver_->stableDt();
   if (particles_) dt = std::min(dt, particles_->maxStep());
   if (!(dt < target - t)) dt = target - t;
-  solver_->step(dt);
+  // The rain of the step is the integral of the step-wise constant intensity over [t, t + dt]
+  // (docs/sources.md), so the volume it adds is exact whatever the steps.
+  solver_->step(dt, scene_.rainfall.depth(t, t + dt));
   if (std::fabs(solver_->time() - target) <= 1e-12 * std::max(1.0, std::fabs(target))) solver_->setTime(target);
   ++steps_;
   std::string problem = health_->check(*solver_, dt);
@@ -184,8 +197,10 @@ Progress Simulation::stepOnce() {
   }
   const flow::FlowDiagnostics& d = solver_->diagnostics();
   totalOutflow_ += totalOutflow(d);
+  totalRain_ += d.rain;
+  totalInfiltrated_ += d.infiltrated;
   const double volume = totalVolume(d);
-  const double balance = initialVolume_ > 0 ? (volume + totalOutflow_ - initialVolume_) / initialVolume_ : 0;
+  const double balance = volumeBalance(volume);
   // The single-phase diagnostics give kinetic energy per unit density; the two-phase ones joules.
   const double kinetic = solver_->twoPhase() ? d.kinetic : scene_.settings.debris.fluidDensity * d.kinetic;
   // Energy (two-phase; zeros for water alone): potential energy, kinetic energy of the motion along
@@ -202,8 +217,11 @@ Progress Simulation::stepOnce() {
                 d.volumeSolid, d.outflow, d.outflowSolid, d.potential, d.kineticVertical, released, lost);
   char wallText[32];
   std::snprintf(wallText, sizeof wallText, ",%.4f", wall());  // wall time last: the one column that differs run to run
+  char sourcesText[64];
+  std::snprintf(sourcesText, sizeof sourcesText, ",%.12g,%.12g", totalRain_, totalInfiltrated_);
   guardedWrite([&] {
-    out_->appendDiagnostics(kCsvHeader, std::string(line) + (particles_ ? particles_->csvRow() : "0,0,0,0") + wallText);
+    out_->appendDiagnostics(kCsvHeader, std::string(line) + (particles_ ? particles_->csvRow() : "0,0,0,0") +
+                                            sourcesText + wallText);
   });
   if (solver_->time() >= nextReport_ * (1 - 1e-15)) {
     guardedWrite([&] { writeReport(); });
@@ -257,8 +275,9 @@ RunSummary Simulation::finalize(Ending ending) {
   s.simulatedSeconds = solver_->time() - scene_.startTime;
   s.finalVolume = totalVolume(solver_->diagnostics());
   s.cellUpdatesPerSecond = s.wallSeconds > 0 ? static_cast<double>(domainCells_) * s.steps / s.wallSeconds : 0;
-  s.volumeBalanceError =
-      s.initialVolume > 0 ? (s.finalVolume + s.totalOutflow - s.initialVolume) / s.initialVolume : 0.0;
+  s.totalRain = totalRain_;
+  s.totalInfiltrated = totalInfiltrated_;
+  s.volumeBalanceError = volumeBalance(s.finalVolume);
   s.checkpoints = checkpoints_;
   writeFinal(s, ending);
   return s;

@@ -26,7 +26,7 @@ struct Progress {
   const flow::FlowDiagnostics* diagnostics = nullptr;
   double volume = 0;             ///< both phases [m^3]
   double cumulativeOutflow = 0;  ///< volume that has left the domain so far [m^3]
-  double balanceError = 0;       ///< (volume + cumulative outflow - initial volume) / initial volume
+  double balanceError = 0;       ///< (volume + outflow + infiltrated - initial - rain) / (initial + rain), cumulative
   double kineticEnergy = 0;      ///< [J], grid phases and particles
 };
 
@@ -37,7 +37,8 @@ struct RunSummary {
   double wallSeconds = 0;
   double cellUpdatesPerSecond = 0;     ///< domain cells x steps / wall time
   double initialVolume = 0, finalVolume = 0, totalOutflow = 0;
-  double volumeBalanceError = 0;       ///< (V_end + outflow - V_0) / V_0
+  double totalRain = 0, totalInfiltrated = 0;  ///< rain added and water infiltrated [m^3] (docs/sources.md)
+  double volumeBalanceError = 0;       ///< (V_end + outflow + infiltrated - V_0 - rain) / (V_0 + rain)
   int checkpoints = 0;                 ///< checkpoints written by this process
 };
 
@@ -94,6 +95,8 @@ class Simulation {
   /// How a run ended, as summary.json reports it.
   enum class Ending { Completed, Stopped, Failed };
   double wall() const;
+  /// Relative volume balance error of a total volume, with the cumulative sources and sinks.
+  double volumeBalance(double volume) const;
   RunSummary finalize(Ending ending);
   void writeFinal(const RunSummary& summary, Ending ending);
   /// Runs a write of the step loop; an IoError ends the run as failed (see the definition).
@@ -116,6 +119,7 @@ class Simulation {
   long long steps_ = 0;
   int reportIndex_ = 0;
   double initialVolume_ = 0, totalOutflow_ = 0, wallBefore_ = 0;
+  double totalRain_ = 0, totalInfiltrated_ = 0;  ///< cumulative sources and sinks of the water [m^3]
   double initialPotential_ = 0, initialMechanical_ = 0;  ///< two-phase energy at the initial state [J]
   double lastReleased_ = 0, lastLost_ = 0;              ///< energy columns of the last step [J]
   std::string seriesIndex_ = "index,time_s,h_file,v_file\n";

@@ -215,7 +215,8 @@ std::string Simulation::summaryJson(const RunSummary& s, Ending ending) const {
     << "  \"simulated_s\": " << s.simulatedSeconds << ",\n  \"steps\": " << s.steps << ",\n"
     << "  \"wall_time_s\": " << s.wallSeconds << ",\n  \"cell_updates_per_s\": " << s.cellUpdatesPerSecond << ",\n"
     << "  \"volume\": {\"initial_m3\": " << s.initialVolume << ", \"final_m3\": " << s.finalVolume
-    << ", \"outflow_m3\": " << s.totalOutflow << ", \"balance_error\": " << s.volumeBalanceError << "}";
+    << ", \"outflow_m3\": " << s.totalOutflow << ", \"rain_m3\": " << s.totalRain
+    << ", \"infiltrated_m3\": " << s.totalInfiltrated << ", \"balance_error\": " << s.volumeBalanceError << "}";
   if (solver_->twoPhase()) {
     const flow::FlowDiagnostics& dg = solver_->diagnostics();
     o << ",\n  \"energy\": {\"kinetic_J\": " << dg.kinetic << ", \"vertical_kinetic_J\": " << dg.kineticVertical

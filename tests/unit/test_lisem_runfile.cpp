@@ -302,11 +302,53 @@ TEST_F(LisemRunFile, ProcessSwitchedOnIsRefusedNamingTheProcess) {
   writeMaps();
   auto changes = solidsOn();
   changes["Include Slope Failure"] = "1";
-  changes["Include Rainfall"] = "1";
+  changes["Include Hydrology"] = "1";
   expectInputError([&] { load(changes); },
                    {"key 'Include Slope Failure': slope failure is not modelled by Talus (OpenLISEM",
-                    "key 'Include Rainfall': rainfall is not modelled by Talus yet",
-                    "set 'Include Rainfall=0' to run without it"});
+                    "key 'Include Hydrology': hydrology (infiltration and surface storage) is not modelled by Talus yet",
+                    "set 'Include Hydrology=0' to run without it"});
+}
+
+TEST_F(LisemRunFile, RainfallAndInfiltrationAreReadWithOpenLisemsNamesAndUnits) {
+  // OpenLISEM's defaults: Rainfall=rain=1 in TimeInput Directory, KSatSimple=ksatsimple.map=1 (mm/h).
+  writeMaps();
+  fs::create_directories(dir_ / "time");
+  std::ofstream(path("time/rain")) << "rain gauge\n2\ntime [min]\nintensity [mm/h]\n0 0\n10 72\n20 0\n";
+  {
+    talus::Grid g = talus::Grid::make(12, 10, 2.0, 0.0, 0.0);
+    talus::io::writeRaster(path("maps/ksatsimple.map"), talus::Raster(g, 18.0), talus::io::RasterFormat::PCRaster);
+  }
+  std::map<std::string, std::string> changes = {{"Include Rainfall", "1"}, {"Include Infiltration", "1"},
+                                                {"End Time", "30"}};
+  const talus::sim::Scene scene = talus::sim::loadScene(load(changes));
+  ASSERT_EQ(scene.rainfall.times().size(), 3u);
+  EXPECT_EQ(scene.rainfall.times()[1], 600.0);
+  EXPECT_EQ(scene.rainfall.intensities()[1], 72.0);
+  EXPECT_NEAR(scene.rainfall.depth(0, 1800), 0.012, 1e-15);  // 72 mm/h for 10 min
+  ASSERT_EQ(scene.infiltration.size(), 120u);
+  EXPECT_NEAR(scene.infiltration[0], 18.0 / 3.6e6, 1e-20);  // mm/h -> m/s
+  // Rain alone is something to move: the dry scene is accepted.
+  EXPECT_NO_THROW(talus::sim::requireMaterial(scene, load(changes)));
+  // A multiplier on the file scales its intensities, as OpenLISEM's GetMapMult does.
+  changes["Rainfall"] = "rain=0.5";
+  EXPECT_EQ(talus::sim::loadScene(load(changes)).rainfall.intensities()[1], 36.0);
+  // Rainfall Intensity (Talus) replaces the file; the switch off reads neither file nor map.
+  changes["Rainfall Intensity"] = "5";
+  EXPECT_EQ(talus::sim::loadScene(load(changes)).rainfall.intensity(1e5), 5.0);
+  fs::remove(path("time/rain"));
+  fs::remove(path("maps/ksatsimple.map"));
+  const talus::sim::Scene off = talus::sim::loadScene(load(solidsOn()));
+  EXPECT_TRUE(off.rainfall.empty());
+  EXPECT_TRUE(off.infiltration.empty());
+  // Missing file with the switch on: named.
+  changes.erase("Rainfall Intensity");
+  changes["Include Infiltration"] = "0";
+  expectInputError([&] { talus::sim::loadScene(load(changes)); }, {"rainfall file '" + path("time/rain") + "'"});
+  // The two-phase model is refused with rain.
+  auto solids = solidsOn();
+  solids["Include Rainfall"] = "1";
+  solids["Rainfall Intensity"] = "5";
+  expectInputError([&] { talus::sim::loadScene(load(solids)); }, {"single-phase model", "two-phase"});
 }
 
 TEST_F(LisemRunFile, NoEffectSettingsGivenOtherwiseAreNamed) {
