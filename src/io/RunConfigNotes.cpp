@@ -73,7 +73,9 @@ std::vector<std::string> RunConfig::warnings() const {
     // nor does OpenLISEM's default file name (its GUI writes every map, with the multiplier 1).
     const bool plainMult = !e.hasMult || e.rawMult == "1";
     if (e.origin == "default" || switchedOn(specs[i]) || specs[i].role != KeyRole::Used) continue;
-    if (plainMult && (e.raw == specs[i].defaultValue || (specs[i].fromLisem && e.raw == specs[i].lisemDefault))) continue;
+    // A text key (the Rainfall file) keeps OpenLISEM's "=1" multiplier inside its value.
+    const bool lisemDefault = specs[i].fromLisem && (e.raw == specs[i].lisemDefault || e.raw == specs[i].lisemDefault + "=1");
+    if (plainMult && (e.raw == specs[i].defaultValue || lisemDefault)) continue;
     out.push_back(printableText(where(e) + ": key '" + specs[i].name + "' is given, but '" + specs[i].enabledBy +
                                 "' is 0: the map is not read (set '" + specs[i].enabledBy + "=1' to use it)"));
   }

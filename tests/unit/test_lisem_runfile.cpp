@@ -330,25 +330,34 @@ TEST_F(LisemRunFile, RainfallAndInfiltrationAreReadWithOpenLisemsNamesAndUnits) 
   // Rain alone is something to move: the dry scene is accepted.
   EXPECT_NO_THROW(talus::sim::requireMaterial(scene, load(changes)));
   // A multiplier on the file scales its intensities, as OpenLISEM's GetMapMult does.
-  changes["Rainfall"] = "rain=0.5";
-  EXPECT_EQ(talus::sim::loadScene(load(changes)).rainfall.intensities()[1], 36.0);
-  // Rainfall Intensity (Talus) replaces the file; the switch off reads neither file nor map.
-  changes["Rainfall Intensity"] = "5";
-  EXPECT_EQ(talus::sim::loadScene(load(changes)).rainfall.intensity(1e5), 5.0);
+  {
+    std::string text = lisemRunFile(dir_.string(), changes);
+    const std::size_t at = text.find("Rainfall=rain=1\n");
+    ASSERT_NE(at, std::string::npos);
+    text.replace(at, std::string("Rainfall=rain=1").size(), "Rainfall=rain=0.5");
+    std::ofstream(path("half.run")) << text;
+    const RunConfig half = RunConfig::load(path("half.run"), talusRunKeys());
+    EXPECT_EQ(talus::sim::loadScene(half).rainfall.intensities()[1], 36.0);
+  }
+  // Rainfall Intensity (Talus's key, added to OpenLISEM's file) replaces the file; the switch off
+  // reads neither file nor map.
+  auto withIntensity = [&](const std::map<std::string, std::string>& c) {
+    std::ofstream(path("intensity.run")) << lisemRunFile(dir_.string(), c) << "Rainfall Intensity=5\n";
+    return RunConfig::load(path("intensity.run"), talusRunKeys());
+  };
+  EXPECT_EQ(talus::sim::loadScene(withIntensity(changes)).rainfall.intensity(1e5), 5.0);
   fs::remove(path("time/rain"));
   fs::remove(path("maps/ksatsimple.map"));
   const talus::sim::Scene off = talus::sim::loadScene(load(solidsOn()));
   EXPECT_TRUE(off.rainfall.empty());
   EXPECT_TRUE(off.infiltration.empty());
   // Missing file with the switch on: named.
-  changes.erase("Rainfall Intensity");
   changes["Include Infiltration"] = "0";
   expectInputError([&] { talus::sim::loadScene(load(changes)); }, {"rainfall file '" + path("time/rain") + "'"});
   // The two-phase model is refused with rain.
   auto solids = solidsOn();
   solids["Include Rainfall"] = "1";
-  solids["Rainfall Intensity"] = "5";
-  expectInputError([&] { talus::sim::loadScene(load(solids)); }, {"single-phase model", "two-phase"});
+  expectInputError([&] { talus::sim::loadScene(withIntensity(solids)); }, {"single-phase model", "two-phase"});
 }
 
 TEST_F(LisemRunFile, NoEffectSettingsGivenOtherwiseAreNamed) {
