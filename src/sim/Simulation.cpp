@@ -41,6 +41,13 @@ Simulation::Simulation(const Scene& scene, const io::RunConfig& config, const st
     for (std::size_t q = 0; q < scene.particles.seeded.size(); ++q)
       bound.h[scene.particles.seeded.cell[q]] += scene.particles.seeded.volume[q] / area;
     health_ = std::make_unique<HealthCheck>(scene.dem, bound, scene.settings);
+  } else if (!scene.rainfall.empty()) {
+    // The rain of the whole run counts for the energy bound as if it lay on every cell at the
+    // start: it can fall over the whole relief and drive fronts as deep as it is.
+    flow::FlowInput bound = scene.flow;
+    const double rain = scene.rainfall.depth(scene.startTime, scene.endTime);
+    for (double& h : bound.h) h += rain;
+    health_ = std::make_unique<HealthCheck>(scene.dem, bound, scene.settings);
   } else {
     health_ = std::make_unique<HealthCheck>(scene.dem, scene.flow, scene.settings);
   }
