@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "core/Error.hpp"
+#include "io/LisemValues.hpp"
 
 namespace talus::io {
 namespace {
@@ -89,7 +90,9 @@ Rainfall readRainfallFile(const std::string& path) {
       throw fail(lines[r].first, "expected a time [min] and one intensity [mm/h], found " +
                                      std::to_string(tokens.size()) + " values");
     double minutes = 0, mmh = 0;
-    if (!number(tokens[0], minutes)) throw fail(lines[r].first, "time '" + tokens[0] + "' is not a number of minutes");
+    // openLISEM 6 stamps its series as day:minute (lisRainfall.cpp, getTimefromString).
+    if (!number(tokens[0], minutes) && !readDayMinute(tokens[0], minutes))
+      throw fail(lines[r].first, "time '" + tokens[0] + "' is neither minutes nor day:minute (ddd:mmmm)");
     if (!number(tokens[1], mmh)) {
       const bool isMap = std::any_of(tokens[1].begin(), tokens[1].end(), [](char c) { return std::isalpha(static_cast<unsigned char>(c)); });
       throw fail(lines[r].first, isMap ? "rainfall maps ('" + tokens[1] + "') are not supported; give intensities in mm/h"

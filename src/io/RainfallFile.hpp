@@ -4,7 +4,8 @@
 //   line 2        the number of columns N (time plus stations)
 //   N lines       one name per column
 //   records       time [min] then N - 1 intensities [mm/h], whitespace-separated
-// Empty lines are skipped. Each record's intensity holds from its time to the next record's (the
+// Empty lines are skipped. Times may also be openLISEM 6's day:minute stamps "ddd:mmmm"
+// (vjetten/openlisem, lisRainfall.cpp, getTimefromString), which has the same layout. Each record's intensity holds from its time to the next record's (the
 // first also before it, the last for ever after: TimeSeries::fillValues, lines 137-180), and the
 // rain of a step is the time integral of that step function. Talus reads one station (N = 2);
 // files with several stations or with map names as records are refused.

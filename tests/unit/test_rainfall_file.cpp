@@ -53,6 +53,16 @@ TEST(RainfallFile, ReadsOneStationInMinutesAndMmPerHour) {
   fs::remove(f);
 }
 
+TEST(RainfallFile, ReadsOpenLisem6DayMinuteTimes) {
+  // openLISEM 6 (lisRainfall.cpp) has the same layout and may stamp records as day:minute.
+  const std::string f = writeFile("daymin.txt", "rain\n2\ntime\nstation 1\n001:0000 0\n001:0030 12\n002:0000 0\n");
+  const Rainfall r = readRainfallFile(f);
+  ASSERT_EQ(r.times().size(), 3u);
+  EXPECT_EQ(r.times()[1] - r.times()[0], 1800.0);
+  EXPECT_EQ(r.times()[2] - r.times()[0], 86400.0);
+  fs::remove(f);
+}
+
 TEST(RainfallFile, FirstRecordHoldsBeforeAndLastAfter) {
   // OpenLISEM's fillValues: the first record's interval starts at -infinity, the last never ends.
   const Rainfall r({600.0, 1200.0}, {10.0, 20.0});
@@ -71,6 +81,8 @@ TEST(RainfallFile, MalformedFilesAreRefusedNamingFileAndLine) {
   expectInputError([&] { readRainfallFile(count); }, {count + "' line 2", "expected the number of columns"});
   const std::string stations = writeFile("stations.txt", "rain\n3\ntime\nP1\nP2\n0 1 2\n");
   expectInputError([&] { readRainfallFile(stations); }, {stations + "' line 2", "2 stations", "one station"});
+  const std::string time = writeFile("time.txt", "rain\n2\ntime\nP1\n0 1\n1:2:3:4 1\n");
+  expectInputError([&] { readRainfallFile(time); }, {time + "' line 6", "neither minutes nor day:minute"});
   const std::string bad = writeFile("bad.txt", "rain\n2\ntime\nP1\n0 1\n\n10 x1\n");
   expectInputError([&] { readRainfallFile(bad); }, {bad + "' line 7", "rainfall maps ('x1') are not supported"});
   const std::string nan = writeFile("nan.txt", "rain\n2\ntime\nP1\n0 1\n10 1,5\n");
@@ -83,5 +95,5 @@ TEST(RainfallFile, MalformedFilesAreRefusedNamingFileAndLine) {
   expectInputError([&] { readRainfallFile(short_); }, {short_ + "' line 5", "found 1 values"});
   const std::string empty = writeFile("empty.txt", "rain\n2\ntime\nP1\n");
   expectInputError([&] { readRainfallFile(empty); }, {"has no records"});
-  for (const std::string& f : {count, stations, bad, nan, order, negative, short_, empty}) fs::remove(f);
+  for (const std::string& f : {time, count, stations, bad, nan, order, negative, short_, empty}) fs::remove(f);
 }
