@@ -109,6 +109,8 @@ TEST(Checkpoint, FileRoundTripAndCorruption) {
   c.reportIndex = 4;
   c.initialVolume = 10.25;
   c.totalOutflow = 0.125;
+  c.totalRain = 2.75;
+  c.totalInfiltrated = 0.5;
   c.elapsedWall = 3.5;
   c.seriesIndex = "index,time_s\n0,0\n";
   c.state = {'a', '\0', 'b', '\x7f'};
@@ -123,11 +125,29 @@ TEST(Checkpoint, FileRoundTripAndCorruption) {
   EXPECT_EQ(r.reportIndex, 4);
   EXPECT_EQ(r.initialVolume, 10.25);
   EXPECT_EQ(r.totalOutflow, 0.125);
+  EXPECT_EQ(r.totalRain, 2.75);
+  EXPECT_EQ(r.totalInfiltrated, 0.5);
   EXPECT_EQ(r.elapsedWall, 3.5);
   EXPECT_EQ(r.seriesIndex, c.seriesIndex);
   EXPECT_EQ(r.state, c.state);
-  // A truncated checkpoint (a kill during a copy, a full disk) is refused by name, at every length.
   const std::string bytes = readFile(path);
+  {
+    // A version 2 file (before rain and infiltration): the same layout without the two totals
+    // after the outflow, magic "TALUSCK2" at both ends. It reads with zero totals.
+    const std::size_t totals = 8 + (8 + c.precision.size()) + 4 + 4 + 8 + 8 + 4 + 8 + 8;
+    std::string v2 = bytes.substr(0, totals) + bytes.substr(totals + 16);
+    v2[7] = '2';
+    v2[v2.size() - 1] = '2';
+    const std::string oldPath = (t.path / "v2.bin").string();
+    std::ofstream(oldPath, std::ios::binary).write(v2.data(), static_cast<std::streamsize>(v2.size()));
+    const sim::Checkpoint o = sim::readCheckpoint(oldPath);
+    EXPECT_EQ(o.totalOutflow, 0.125);
+    EXPECT_EQ(o.totalRain, 0.0);
+    EXPECT_EQ(o.totalInfiltrated, 0.0);
+    EXPECT_EQ(o.elapsedWall, 3.5);
+    EXPECT_EQ(o.state, c.state);
+  }
+  // A truncated checkpoint (a kill during a copy, a full disk) is refused by name, at every length.
   for (std::size_t cut : {std::size_t{0}, std::size_t{5}, std::size_t{20}, bytes.size() - 1}) {
     std::ofstream(path, std::ios::binary | std::ios::trunc).write(bytes.data(), static_cast<std::streamsize>(cut));
     try {
