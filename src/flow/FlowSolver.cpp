@@ -205,9 +205,6 @@ void FlowSolver::step(double dt, double rainDepth) {
   }
   const bool sources = rainDepth > 0 || hasInfiltration_;
   const double infiltrated = sources ? enqueueSources(dt, rainDepth) : 0.0;
-  // Rain wets dry tiles, which the active list may not hold: the diagnostics then look at every
-  // tile and find the wet ones (infiltration only dries cells, so the list still covers the water).
-  if (rainDepth > 0) activateAllTiles();
   time_ += dt;
   enqueueTrackMaxima();
   computeDiagnostics();
@@ -217,7 +214,6 @@ void FlowSolver::step(double dt, double rainDepth) {
 
 void FlowSolver::applySources(double dt, double rainDepth) {
   const double infiltrated = enqueueSources(dt, rainDepth);
-  if (rainDepth > 0) activateAllTiles();
   computeDiagnostics();
   diag_.rain = rainDepth * static_cast<double>(domainCells_) * grid_.dx * grid_.dx;
   diag_.infiltrated = infiltrated;
@@ -227,6 +223,10 @@ double FlowSolver::enqueueSources(double dt, double rainDepth) {
   sources_.bind(params_, mask_, infiltration_, compute::RealArg{rainDepth}, compute::RealArg{dt}, h_, qx_, qy_, sink_);
   const compute::Range global{static_cast<std::size_t>(tilesX_) * kTile, static_cast<std::size_t>(tilesY_) * kTile};
   sources_.launch(global, kLocal2D, "flow_sources");
+  // Rain wets dry tiles, which the active list may not hold: the maxima and the diagnostics then
+  // run over every tile, and the diagnostics find the wet ones (infiltration only dries cells, so
+  // the list still covers the water).
+  if (rainDepth > 0) activateAllTiles();
   return hasInfiltration_ ? reducer_.sum(sink_, grid_.cells()) * grid_.dx * grid_.dx : 0.0;
 }
 

@@ -138,8 +138,8 @@ class FlowSolver {
                      double a, bool firstStage);
   void enqueueFriction(double dt);
   void enqueueTrackMaxima();
-  /// Rain and infiltration over the whole grid (kernels/flow/water_sources.cl); returns the
-  /// infiltrated volume [m^3].
+  /// Rain and infiltration over the whole grid (kernels/flow/water_sources.cl); with rain, lists
+  /// every tile as active (rain wets dry tiles). Returns the infiltrated volume [m^3].
   double enqueueSources(double dt, double rainDepth);
   void computeDiagnostics();
   /// Lists every tile as active, so the next diagnostics find the wet tiles anywhere.
