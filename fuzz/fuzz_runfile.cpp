@@ -61,9 +61,11 @@ void readAll(const RunConfig& c) {
   }
 }
 
-/// Compares every declared key of two configurations by value (the documented echo round trip).
+/// Compares every key Talus uses of two configurations by value (the documented echo round trip:
+/// echo() writes the keys Talus uses; the OpenLISEM keys it accepts without reading are not echoed).
 void sameValues(const RunConfig& a, const RunConfig& b) {
   for (const talus::io::KeySpec& k : a.registry().keys()) {
+    if (k.role != talus::io::KeyRole::Used) continue;
     bool same = true;
     switch (k.type) {
       case KeyType::Flag: same = a.flag(k.name) == b.flag(k.name); break;
