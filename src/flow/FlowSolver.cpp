@@ -179,7 +179,6 @@ void FlowSolver::setInfiltration(const std::vector<double>& rate) {
     hasInfiltration_ = false;
     return;
   }
-  if (settings_.twoPhase) throw InputError("infiltration is modelled for the single-phase (water) model only");
   if (rate.size() != grid_.cells())
     throw InputError("infiltration map has " + std::to_string(rate.size()) + " values, the grid has " +
                      std::to_string(grid_.cells()));
@@ -193,8 +192,6 @@ void FlowSolver::step(double dt, double rainDepth) {
   if (!(dt > 0) || !std::isfinite(dt)) throw SimulationError("flow step with invalid dt " + std::to_string(dt));
   if (!(rainDepth >= 0) || !std::isfinite(rainDepth))
     throw SimulationError("flow step with invalid rain depth " + std::to_string(rainDepth));
-  if (rainDepth > 0 && settings_.twoPhase)
-    throw InputError("rainfall is modelled for the single-phase (water) model only");
   if (settings_.twoPhase) {
     enqueueDebrisStage(true, dt);
     enqueueDebrisStage(false, dt);
@@ -203,6 +200,8 @@ void FlowSolver::step(double dt, double rainDepth) {
     enqueueStage(h1_, qx1_, qy1_, h_, qx_, qy_, dt, 0.5, false);
     if (hasFriction_) enqueueFriction(dt);
   }
+  // Rain and infiltration act on the water: the single-phase model's, or the fluid phase of the
+  // two-phase model (h_, qx_, qy_ hold the fluid there too), after the phases' own step.
   const bool sources = rainDepth > 0 || hasInfiltration_;
   const double infiltrated = sources ? enqueueSources(dt, rainDepth) : 0.0;
   time_ += dt;

@@ -144,9 +144,6 @@ void loadSources(const io::RunConfig& cfg, const MapLoader& loadMap, Scene& s) {
     s.infiltration = loadMap("KSatSimple");
     for (double& f : s.infiltration) f /= 3600.0 * 1000.0;  // mm/h -> m/s (modelruninit.cpp line 738)
   }
-  if (s.settings.twoPhase && (!s.rainfall.empty() || !s.infiltration.empty()))
-    throw InputError(cfg.sourceName() + ": Include Rainfall and Include Infiltration act on the water of the "
-                     "single-phase model; this scene has solids (two-phase model), which Talus does not rain on yet");
 }
 
 }  // namespace

@@ -354,10 +354,12 @@ TEST_F(LisemRunFile, RainfallAndInfiltrationAreReadWithOpenLisemsNamesAndUnits) 
   // Missing file with the switch on: named.
   changes["Include Infiltration"] = "0";
   expectInputError([&] { talus::sim::loadScene(load(changes)); }, {"rainfall file '" + path("time/rain") + "'"});
-  // The two-phase model is refused with rain.
+  // With solids (the two-phase model) the rain falls into the fluid phase.
   auto solids = solidsOn();
   solids["Include Rainfall"] = "1";
-  expectInputError([&] { talus::sim::loadScene(withIntensity(solids)); }, {"single-phase model", "two-phase"});
+  const talus::sim::Scene wetSolids = talus::sim::loadScene(withIntensity(solids));
+  EXPECT_TRUE(wetSolids.settings.twoPhase);
+  EXPECT_EQ(wetSolids.rainfall.intensity(0.0), 5.0);
 }
 
 TEST_F(LisemRunFile, NoEffectSettingsGivenOtherwiseAreNamed) {
