@@ -114,6 +114,9 @@ void FlowSolver::setInput(const FlowInput& in, double startTime) {
   gp_.upload(sg.gp);
   gn_.upload(sg.gn);
   slopeSpeed_.upload(sg.slopeSpeed);
+  maxSlopeSpeed_ = 0;
+  for (std::size_t k = 0; k < n; ++k)
+    if (in.mask[k]) maxSlopeSpeed_ = std::max(maxSlopeSpeed_, sg.slopeSpeed[k]);
   if (settings_.twoPhase) {
     curvature_.upload(settings_.curvature ? sg.curvature : std::vector<double>(sg.curvature.size(), 0.0));
     std::vector<double> slope = sg.slopeX;
@@ -216,6 +219,11 @@ void FlowSolver::applySources(double dt, double rainDepth) {
   computeDiagnostics();
   diag_.rain = rainDepth * static_cast<double>(domainCells_) * grid_.dx * grid_.dx;
   diag_.infiltrated = infiltrated;
+}
+
+double FlowSolver::filmStableDt() const {
+  if (!(maxSlopeSpeed_ > 0)) return std::numeric_limits<double>::infinity();
+  return settings_.cfl * grid_.dx / (2.0 * maxSlopeSpeed_);
 }
 
 double FlowSolver::enqueueSources(double dt, double rainDepth) {

@@ -68,6 +68,11 @@ class FlowSolver {
   void setInput(const FlowInput& in, double startTime = 0.0);
   /// The CFL time step of the current state (infinite when everything is at rest and dry).
   double stableDt() const;
+  /// The CFL time step of a film at rest on every domain cell: cfl dx / (2 w_max), w_max the largest
+  /// slope speed sqrt(g |grad b| dx) of the bed (the wave speed of any wet cell at rest includes
+  /// 2 w). Infinite on a flat bed. A step in which rain wets dry ground keeps within it, so the
+  /// rain's first step is not a whole report interval without runoff.
+  double filmStableDt() const;
   /// Advances by dt (caller keeps dt <= stableDt()); `rainDepth` [m] is the uniform rain depth that
   /// falls on every domain cell during the step (the step's integral of the intensity), added after
   /// the flux update together with the infiltration of setInfiltration() (docs/sources.md).
@@ -163,6 +168,7 @@ class FlowSolver {
   compute::Buffer<uint8_t> mask_;
   compute::Buffer<int> tileActive_, tileWet_, tileList_, tileCount_;
   int activeTiles_ = 0;
+  double maxSlopeSpeed_ = 0;  ///< max slope speed over the domain [m/s]
   bool hasInfiltration_ = false;
   std::size_t domainCells_ = 0;  ///< cells inside the domain (the rain volume is rainDepth x these x dx^2)
   bool hasFriction_ = true;  ///< false when Manning's n is zero everywhere: friction is not launched

@@ -183,6 +183,11 @@ Progress Simulation::stepOnce() {
   const double target = std::min(nextReport_, tEnd);
   double dt = solver_->stableDt();
   if (particles_) dt = std::min(dt, particles_->maxStep());
+  // Rain wets dry ground everywhere at once: the step that does so keeps within the time step the
+  // wetted state will need (FlowSolver::filmStableDt), or the first rain would lie still for a
+  // whole report interval on a dry slope.
+  if (!scene_.rainfall.empty() && scene_.rainfall.depth(t, t + std::min(dt, target - t)) > 0)
+    dt = std::min(dt, solver_->filmStableDt());
   if (!(dt < target - t)) dt = target - t;
   // The rain of the step is the integral of the step-wise constant intensity over [t, t + dt]
   // (docs/sources.md), so the volume it adds is exact whatever the steps.
