@@ -82,6 +82,14 @@ inline real limited_slope(real a, real b) {
 #endif
 }
 
+/// Minmod of the one-sided differences a (backward) and b (forward): the bed's slope in a cell. On a
+/// bed that falls (or rises) monotonically the reconstructed face beds then never jump against the
+/// fall at a face, whatever the curvature, and a plane is exact.
+inline real bed_minmod(real a, real b) {
+  if (a * b <= (real)0) return (real)0;
+  return fabs(a) < fabs(b) ? a : b;
+}
+
 /// Reconstructed values of one cell at its two faces along one direction.
 typedef struct {
   real h_lo, h_hi;    // thickness at the minus / plus face
@@ -107,12 +115,25 @@ inline Prim load_prim(__constant const FlowParams* p, __global const real* h, __
   return s;
 }
 
+/// Face values of cell c from its slopes of thickness, surface and the two velocities.
+inline CellFaces faces_of(Prim c, real sh, real se, real su, real sv) {
+  CellFaces f;
+  f.h_lo = c.h - (real)0.5 * sh;
+  f.h_hi = c.h + (real)0.5 * sh;
+  f.e_lo = c.e - (real)0.5 * se;
+  f.e_hi = c.e + (real)0.5 * se;
+  f.un_lo = c.un - (real)0.5 * su;
+  f.un_hi = c.un + (real)0.5 * su;
+  f.ut_lo = c.ut - (real)0.5 * sv;
+  f.ut_hi = c.ut + (real)0.5 * sv;
+  return f;
+}
+
 /// MUSCL reconstruction of cell C from its neighbours M (minus side) and P (plus side) along the
 /// direction. A neighbour outside the domain gives a zero slope (first order next to boundaries),
 /// which is also what the limiter returns for a mirrored ghost cell's thickness and surface; so does
 /// a dry cell or a dry neighbour (first order at wet/dry fronts).
 inline CellFaces reconstruct(Prim m, int m_in, Prim c, Prim pl, int p_in) {
-  CellFaces f;
   real sh = 0, se = 0, su = 0, sv = 0;
   // First order at wet/dry fronts (a dry cell or a dry neighbour): on steep slopes a limited surface
   // slope in a dry cell can put its face bed above a wet neighbour's surface, which would block the
@@ -123,15 +144,29 @@ inline CellFaces reconstruct(Prim m, int m_in, Prim c, Prim pl, int p_in) {
     su = limited_slope(c.un - m.un, pl.un - c.un);
     sv = limited_slope(c.ut - m.ut, pl.ut - c.ut);
   }
-  f.h_lo = c.h - (real)0.5 * sh;
-  f.h_hi = c.h + (real)0.5 * sh;
-  f.e_lo = c.e - (real)0.5 * se;
-  f.e_hi = c.e + (real)0.5 * se;
-  f.un_lo = c.un - (real)0.5 * su;
-  f.un_hi = c.un + (real)0.5 * su;
-  f.ut_lo = c.ut - (real)0.5 * sv;
-  f.ut_hi = c.ut + (real)0.5 * sv;
-  return f;
+  return faces_of(c, sh, se, su, sv);
+}
+
+/// MUSCL reconstruction of a shallow-water cell (the water stage; the fluid of the two-phase model
+/// uses `reconstruct`): the free surface eta with the run's limiter, over the bed reconstructed with
+/// minmod (bed_minmod), so the face thickness is h +- (s_eta - s_b) / 2 (the cell's volume is kept).
+/// Reconstructing the bed as eta - h with the compressive limiters (MC and van Leer allow twice the
+/// smaller one-sided difference) put false rises into a monotone bed wherever the water is thin
+/// against the bed's change of slope (a sheet reaching a cliff edge): the rise held the sheet while
+/// the bed slope inside the cell kept accelerating it, which created energy. A lake at rest has a
+/// flat surface and so flat face surfaces (well-balanced). Where the surface slope would give a
+/// face a negative thickness (a sheet thinner than the slopes' mismatch, a dry cell, a shoreline) the
+/// cell is first order: its face values are its cell values, and the subcell face bed of face_between
+/// (riemann.cl) lets the water fall to a lower neighbour with the bed force of the drop. Zero slopes
+/// next to outside cells.
+inline CellFaces reconstruct_surface(Prim m, int m_in, Prim c, Prim pl, int p_in) {
+  CellFaces f = {c.h, c.h, c.e, c.e, c.un, c.un, c.ut, c.ut};
+  if (!(m_in && p_in)) return f;
+  const real sb = bed_minmod((c.e - c.h) - (m.e - m.h), (pl.e - pl.h) - (c.e - c.h));
+  const real se = limited_slope(c.e - m.e, pl.e - c.e);
+  const real dh = (real)0.5 * (se - sb);
+  if (!(c.h - dh >= (real)0 && c.h + dh >= (real)0)) return f;
+  return faces_of(c, se - sb, se, limited_slope(c.un - m.un, pl.un - c.un), limited_slope(c.ut - m.ut, pl.ut - c.ut));
 }
 
 #endif

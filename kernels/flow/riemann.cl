@@ -3,8 +3,8 @@
 //   h_t + div(h u) = 0,
 //   (h u)_t + div(h u u) + g_p h grad h = -g_n h grad b.
 // From the MUSCL face values of the two cells beside the face: ghost states at boundaries, the
-// hydrostatic reconstruction of Audusse et al. (2004, SIAM J. Sci. Comput. 25, eq. 2.7-2.9) for
-// well-balancing and positivity, and an HLL (Harten, Lax & van Leer 1983) or HLLC (Toro 2001,
+// hydrostatic reconstruction of Audusse et al. (2004, SIAM J. Sci. Comput. 25, eq. 2.7-2.9) with the
+// subcell face bed of Chen & Noelle (2017) for well-balancing and positivity, and an HLL (Harten, Lax & van Leer 1983) or HLLC (Toro 2001,
 // "Shock-capturing methods for free-surface shallow flows", ch. 10) flux.
 //
 // The hydrostatic pressure part of the normal-momentum flux is returned without its factor g, so
@@ -86,7 +86,7 @@ typedef struct {
   real fqn;     // normal momentum flux without the pressure part
   real fqt;     // tangential momentum flux
   real p;       // HLL pressure flux P (the cell adds g_p * P)
-  real corr_m;  // hydrostatic correction of the minus-side cell (h_face^2 - h*^2) / 2
+  real corr_m;  // bed-jump correction of the minus-side cell: (h^2 - h*^2) / 2 at a rise, h (z* - z) at a drop
   real corr_p;  // same for the plus-side cell
 } Face;
 
@@ -115,16 +115,30 @@ inline Face face_between(int m_in, Side m, int p_in, Side p, int kind) {
   Face f = {0, 0, 0, 0, 0, 0};
   if (!m_in && !p_in) return f;
   const int wall = ghost_sides(m_in, &m, p_in, &p, kind);
-  // Hydrostatic reconstruction: the face bed is the higher of the two face beds.
-  const real bs = fmax(m.e - m.h, p.e - p.h);
-  const real hm = fmax((real)0, m.e - bs), hp = fmax((real)0, p.e - bs);
+  // Hydrostatic reconstruction with a subcell face bed (Chen & Noelle 2017, SIAM J. Numer. Anal. 55,
+  // eq. 3.4-3.9): the face bed is the higher of the two face beds, but never above the lower of the
+  // two free surfaces, z* = min(max(z_m, z_p), min(e_m, e_p)).
+  const real zm = m.e - m.h, zp = p.e - p.h;
+  const real bs = fmin(fmax(zm, zp), fmin(m.e, p.e));
+  // A side whose face bed lies below z* meets a rise: the part of its column above z* reaches the
+  // face (Audusse's h* = e - z*, >= 0 because z* <= e). A side above z* (its neighbour's surface is
+  // lower than its own bed: a thin sheet on a steep coarse slope, water at a cliff edge) keeps its
+  // thickness.
+  const real hm = bs >= zm ? fmax((real)0, m.e - bs) : m.h;
+  const real hp = bs >= zp ? fmax((real)0, p.e - bs) : p.h;
   const FaceFlux r = riemann_flux(hm, m.un, m.ut, hp, p.un, p.ut, fmax(m.g, p.g));
   f.fh = wall ? (real)0 : r.fh;
   f.fqn = r.fqn;
   f.fqt = wall ? (real)0 : r.fqt;
   f.p = r.p;
-  f.corr_m = (real)0.5 * (m.h * m.h - hm * hm);
-  f.corr_p = (real)0.5 * (p.h * p.h - hp * hp);
+  // The source of the bed jump between a side's face bed and z*, trapezoidal in Chen & Noelle's
+  // form (h + h*)/2 (z* - z): at a rise that is Audusse's (h^2 - h*^2)/2, written so (bitwise at
+  // rest); at a drop (h* = h) it is h (z* - z) < 0, the bed force of the fall to the neighbour's
+  // surface, which drives a sheet on a staircase by its true slope. Without it (Audusse's z* =
+  // max(z_m, z_p)) the face only passes a dam-break flux and water on slopes steeper than depth over
+  // cell size is held back by the grid.
+  f.corr_m = bs >= zm ? (real)0.5 * (m.h * m.h - hm * hm) : m.h * (bs - zm);
+  f.corr_p = bs >= zp ? (real)0.5 * (p.h * p.h - hp * hp) : p.h * (bs - zp);
   return f;
 }
 

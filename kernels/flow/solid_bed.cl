@@ -49,12 +49,6 @@ inline real terrain_factor(__global const real* curv, int n, int k, real u, real
   return fmax((real)0, (real)1 + c / (real)GRAVITY);
 }
 
-/// Minmod of the one-sided differences a (backward) and b (forward).
-inline real bed_minmod(real a, real b) {
-  if (a * b <= (real)0) return (real)0;
-  return fabs(a) < fabs(b) ? a : b;
-}
-
 /// Change of the reconstructed bed across cell c (plus face minus minus face) along one axis, from
 /// the beds of its neighbours (bm, bp; m_in, p_in: inside the domain).
 inline real bed_rise(real bm, int m_in, real bc, real bp, int p_in) {

@@ -40,7 +40,7 @@ inline CellFaces local_faces(__local const real* lh, __local const real* le, __l
   const Prim c = local_prim(lh, le, lu, lv, a, b, dir);
   const Prim m = m_in ? local_prim(lh, le, lu, lv, a - da, b - db, dir) : c;
   const Prim p = p_in ? local_prim(lh, le, lu, lv, a + da, b + db, dir) : c;
-  return reconstruct(m, m_in, c, p, p_in);
+  return reconstruct_surface(m, m_in, c, p, p_in);
 }
 
 inline Side side_hi(CellFaces f, real g) { Side s = {f.h_hi, f.e_hi, f.un_hi, f.ut_hi, g}; return s; }

@@ -72,17 +72,43 @@ std::string HealthCheck::locate(const flow::FlowSolver& solver, const char* what
     const double score = negative ? -hh[k] : hh[k] > hDry_ ? std::hypot(ax[k], ay[k]) / hh[k] : 0.0;
     if (score > worstValue) worstValue = score, worst = k, worstSolid = solid;
   };
+  // Non-finite values spread to the neighbours within a step (two stages, two-cell stencils), so
+  // the message names the region and the bad cell nearest its centroid, where it most likely began.
+  std::size_t badCount = 0;
+  int iMin = grid_.nx, iMax = -1, jMin = grid_.ny, jMax = -1;
+  double iSum = 0, jSum = 0;
+  auto isBad = [&](std::size_t k) {
+    return !std::isfinite(h[k]) || !std::isfinite(qx[k]) || !std::isfinite(qy[k]) ||
+           (solids && (!std::isfinite(hs[k]) || !std::isfinite(qsx[k]) || !std::isfinite(qsy[k])));
+  };
   for (std::size_t k = 0; k < h.size(); ++k) {
-    const bool bad = !std::isfinite(h[k]) || !std::isfinite(qx[k]) || !std::isfinite(qy[k]) ||
-                     (solids && (!std::isfinite(hs[k]) || !std::isfinite(qsx[k]) || !std::isfinite(qsy[k])));
-    if (bad) {
-      o << what << ": non-finite state h = " << h[k] << " m, qx = " << qx[k] << ", qy = " << qy[k] << " m^2/s";
-      if (solids) o << ", h_s = " << hs[k] << " m, q_sx = " << qsx[k] << ", q_sy = " << qsy[k] << " m^2/s";
-      o << " in " << where(grid_, k);
-      return o.str();
+    if (isBad(k)) {
+      const int i = static_cast<int>(k % grid_.nx), j = static_cast<int>(k / grid_.nx);
+      ++badCount;
+      iMin = std::min(iMin, i), iMax = std::max(iMax, i), jMin = std::min(jMin, j), jMax = std::max(jMax, j);
+      iSum += i, jSum += j;
+      continue;
     }
     consider(h, qx, qy, false, k);
     if (solids) consider(hs, qsx, qsy, true, k);
+  }
+  if (badCount > 0) {
+    const double ic = iSum / badCount, jc = jSum / badCount;
+    std::size_t centre = 0;
+    double best = HUGE_VAL;
+    for (std::size_t k = 0; k < h.size(); ++k) {
+      if (!isBad(k)) continue;
+      const double di = static_cast<double>(k % grid_.nx) - ic, dj = static_cast<double>(k / grid_.nx) - jc;
+      if (di * di + dj * dj < best) best = di * di + dj * dj, centre = k;
+    }
+    o << what << ": non-finite state h = " << h[centre] << " m, qx = " << qx[centre] << ", qy = " << qy[centre]
+      << " m^2/s";
+    if (solids) o << ", h_s = " << hs[centre] << " m, q_sx = " << qsx[centre] << ", q_sy = " << qsy[centre] << " m^2/s";
+    o << " in " << where(grid_, centre);
+    if (badCount > 1)
+      o << ", the centre of " << badCount << " non-finite cells (columns " << iMin << "-" << iMax << ", rows " << jMin
+        << "-" << jMax << ")";
+    return o.str();
   }
   const std::vector<double>& hh = worstSolid ? hs : h;
   const std::vector<double>& ax = worstSolid ? qsx : qx;

@@ -72,15 +72,22 @@ CpuFlowReference::Prim CpuFlowReference::prim(const State& s, int i, int j, int 
 CpuFlowReference::Faces CpuFlowReference::reconstruct(const State& s, int i, int j, int dir) const {
   const int di = dir == 0 ? 1 : 0, dj = 1 - di;
   const Prim c = prim(s, i, j, dir);
-  // Limited slopes; zero next to outside cells and at wet/dry fronts (the cell or a neighbour dry).
+  // The surface with the limiter over a minmod bed (flow_common.cl, reconstruct_surface); zero slopes
+  // next to outside cells and where a face thickness would be negative.
   double dh = 0, de = 0, dun = 0, dut = 0;
   const bool bothInside = inside(i - di, j - dj) && inside(i + di, j + dj);
-  const Prim m = bothInside ? prim(s, i - di, j - dj, dir) : c, p = bothInside ? prim(s, i + di, j + dj, dir) : c;
-  if (bothInside && m.h > 0.0 && c.h > 0.0 && p.h > 0.0) {
-    dh = limiter(c.h - m.h, p.h - c.h);
-    de = limiter(c.eta - m.eta, p.eta - c.eta);
-    dun = limiter(c.un - m.un, p.un - c.un);
-    dut = limiter(c.ut - m.ut, p.ut - c.ut);
+  if (bothInside) {
+    const Prim m = prim(s, i - di, j - dj, dir), p = prim(s, i + di, j + dj, dir);
+    const double a = (c.eta - c.h) - (m.eta - m.h), b = (p.eta - p.h) - (c.eta - c.h);
+    const double db = a * b <= 0.0 ? 0.0 : (std::fabs(a) < std::fabs(b) ? a : b);
+    const double se = limiter(c.eta - m.eta, p.eta - c.eta);
+    const double half = 0.5 * (se - db);
+    if (c.h - half >= 0.0 && c.h + half >= 0.0) {
+      dh = se - db;
+      de = se;
+      dun = limiter(c.un - m.un, p.un - c.un);
+      dut = limiter(c.ut - m.ut, p.ut - c.ut);
+    }
   }
   return {c.h - 0.5 * dh,   c.h + 0.5 * dh,   c.eta - 0.5 * de, c.eta + 0.5 * de,
           c.un - 0.5 * dun, c.un + 0.5 * dun, c.ut - 0.5 * dut, c.ut + 0.5 * dut};
@@ -160,13 +167,17 @@ CpuFlowReference::FaceFlux CpuFlowReference::faceFlux(const State& s, int i, int
     R = L;
     if (wall) R.un = -L.un;
   }
-  // Audusse et al. (2004): face bed = higher face bed, thicknesses re-measured from it.
-  const double bedFace = std::max(L.eta - L.h, R.eta - R.h);
-  const double hl = std::max(0.0, L.eta - bedFace), hr = std::max(0.0, R.eta - bedFace);
+  // Chen & Noelle (2017, eq. 3.4-3.9): face bed = higher face bed, but not above the lower free
+  // surface; a side below it is re-measured from it (Audusse et al. 2004), a side above it keeps its
+  // thickness and takes the bed force of the drop, h (z* - z).
+  const double zl = L.eta - L.h, zr = R.eta - R.h;
+  const double bedFace = std::min(std::max(zl, zr), std::min(L.eta, R.eta));
+  const double hl = bedFace >= zl ? std::max(0.0, L.eta - bedFace) : L.h;
+  const double hr = bedFace >= zr ? std::max(0.0, R.eta - bedFace) : R.h;
   f = riemann(hl, L.un, L.ut, hr, R.un, R.ut, std::max(L.g, R.g));
   if (wall) f.mass = 0.0, f.tangentialMomentum = 0.0;
-  f.corrMinus = 0.5 * (L.h * L.h - hl * hl);
-  f.corrPlus = 0.5 * (R.h * R.h - hr * hr);
+  f.corrMinus = bedFace >= zl ? 0.5 * (L.h * L.h - hl * hl) : L.h * (bedFace - zl);
+  f.corrPlus = bedFace >= zr ? 0.5 * (R.h * R.h - hr * hr) : R.h * (bedFace - zr);
   return f;
 }
 

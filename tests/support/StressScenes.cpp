@@ -794,16 +794,9 @@ StressOutcome runStressScene(const StressScene& scene) {
       break;
     }
 
-    // Energy. Known limitation (docs/numerics.md): with the compressive limiters (van Leer, MC),
-    // water without friction on steep slopes or cliffs can gain kinetic energy beyond the released
-    // potential energy (measured up to ~25 % after a few hundred steps: seeds 14493454552802392858,
-    // 3610104951568155784, 8348562632382950745); minmod and first order do not. The energy bound is
-    // checked for every scene with those limiters, and with van Leer / MC where friction acts in
-    // every cell; the others still get every other check (positivity, finiteness, volume, CFL).
-    const bool frictionless = std::any_of(scene.input.manning.begin(), scene.input.manning.end(),
-                                          [](double v) { return v == 0.0; });
-    const bool compressive = s.limiter == flow::Limiter::VanLeer || s.limiter == flow::Limiter::MC;
-    const bool energyChecked = !(frictionless && compressive);
+    // Energy, for every scene and limiter (the compressive limiters' exemption on frictionless
+    // steep terrain went with the minmod face bed of reconstruct_surface, flow_common.cl).
+    const bool energyChecked = true;
     slopeWork += dt * std::max(before.slopeWorkRate, t.slopeWorkRate);
     const double released = kGravity * (t0.potential - t.potential);
     const double slack = kSlackRel * (t0.kinetic + std::fabs(released) + slopeWork) +
