@@ -423,7 +423,10 @@ __kernel void debris_stage(__constant const FlowParams* p, __constant const Debr
   if (hsn > p->h_dry) {
     const real rx = qs[0] - hsn * ucx, ry = qs[1] - hsn * ucy;
     const real qn = sqrt(rx * rx + ry * ry);
-    const real fric = ds * tan(mn.delta) * ((real)1 - dp->pore_b * mn.gamma) * geff * hsn;
+    // The friction of the stage's own state (the thickness its bed force and pressure used): with
+    // the new thickness a cell filling within the stage (every front cell) met the friction of its
+    // new mass but the bed force of its old one, and Coulomb fronts lagged (docs/two_phase.md).
+    const real fric = ds * tan(mn.delta) * ((real)1 - dp->pore_b * mn.gamma) * geff * S_st[k];
     const real f = qn <= fric ? (real)0 : (real)1 - fric / qn;
     qs[0] = hsn * ucx + f * rx;
     qs[1] = hsn * ucy + f * ry;
