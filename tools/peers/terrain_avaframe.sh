@@ -11,6 +11,10 @@
 #   TALUS  talus binary (default: the first executable `talus` under build/)
 #   NICE   prefix for the heavy commands (default "nice -n 19")
 #   MD     write the Markdown table also to this file (optional)
+#   SKIP_AVAFRAME=1  reuse $WORK/avaframe/<case> when its run_info.json exists (no com1DFA rerun)
+#   TALUS_SET  extra Talus settings, ';'-separated, each passed as --set (e.g. "Limiter=minmod");
+#              the run then goes to talus/<case>/out_<label> (label: TALUS_SET with characters other
+#              than A-Za-z0-9.,- as '_', or TALUS_LABEL) and the table shows every out* folder
 set -euo pipefail
 HERE="$(cd "$(dirname "$0")" && pwd)"
 ROOT="$(cd "$HERE/../.." && pwd)"
@@ -19,6 +23,14 @@ WORK="${WORK:-/work/terrain_peers}"
 DATA="${DATA:-/work/shared/data/terrain}"
 NICE="${NICE:-nice -n 19}"
 TALUS="${TALUS:-$(find "$ROOT/build" -name talus -type f -perm -u+x | head -n 1)}"
+SETS=()
+LABEL=""
+if [ -n "${TALUS_SET:-}" ]; then
+  IFS=';' read -ra KV <<< "$TALUS_SET"
+  for kv in "${KV[@]}"; do SETS+=(--set "$kv"); done
+  LABEL="${TALUS_LABEL:-$(printf '%s' "$TALUS_SET" | tr -c 'A-Za-z0-9.,-' '_')}"
+fi
+OUT="out${LABEL:+_$LABEL}"
 CASES=("$@")
 [ ${#CASES[@]} -gt 0 ] || CASES=(avaKot avaAlr)
 
@@ -30,17 +42,22 @@ PY="$VENV/bin/python"
 [ -x "$TALUS" ] || { echo "no talus binary (set TALUS)" >&2; exit 1; }
 mkdir -p "$WORK"
 { date -u; echo "talus: $TALUS"; sha256sum "$TALUS"; git -C "$ROOT" rev-parse HEAD 2>/dev/null || true
-  "$PY" -c "import importlib.metadata as m; print('avaframe', m.version('avaframe'))"; } > "$WORK/provenance.txt"
+  echo "talus settings: ${TALUS_SET:-(defaults)}"
+  "$PY" -c "import importlib.metadata as m; print('avaframe', m.version('avaframe'))"; } > "$WORK/provenance${LABEL:+_$LABEL}.txt"
 
 for c in "${CASES[@]}"; do
-  echo "== $c: AvaFrame com1DFA"
-  $NICE "$PY" "$HERE/terrain_avaframe_run.py" "$DATA/$c" "$WORK" > "$WORK/avaframe_$c.log" 2>&1 \
-    || { echo "AvaFrame failed on $c, see $WORK/avaframe_$c.log" >&2; tail -n 20 "$WORK/avaframe_$c.log" >&2; }
-  echo "== $c: Talus"
+  if [ "${SKIP_AVAFRAME:-0}" = 1 ] && [ -f "$WORK/avaframe/$c/run_info.json" ]; then
+    echo "== $c: AvaFrame com1DFA (reusing $WORK/avaframe/$c)"
+  else
+    echo "== $c: AvaFrame com1DFA"
+    $NICE "$PY" "$HERE/terrain_avaframe_run.py" "$DATA/$c" "$WORK" > "$WORK/avaframe_$c.log" 2>&1 \
+      || { echo "AvaFrame failed on $c, see $WORK/avaframe_$c.log" >&2; tail -n 20 "$WORK/avaframe_$c.log" >&2; }
+  fi
+  echo "== $c: Talus ${TALUS_SET:-}"
   "$PY" "$HERE/terrain_compare.py" prep "$DATA/$c" "$WORK"
-  ( cd "$WORK/talus/$c" && $NICE "$TALUS" run case.run --out out --precision double --overwrite --quiet ) \
-    > "$WORK/talus_$c.log" 2>&1 \
-    || { echo "Talus failed on $c (rc $?), see $WORK/talus_$c.log" >&2; tail -n 20 "$WORK/talus_$c.log" >&2; }
+  LOG="$WORK/talus_$c${LABEL:+_$LABEL}.log"
+  ( cd "$WORK/talus/$c" && $NICE "$TALUS" run case.run --out "$OUT" --precision double --overwrite --quiet ${SETS[@]+"${SETS[@]}"} ) \
+    > "$LOG" 2>&1 || { echo "Talus failed on $c (rc $?), see $LOG" >&2; tail -n 20 "$LOG" >&2; }
 done
 
 "$PY" "$HERE/terrain_compare.py" table "$WORK" "${CASES[@]}" --data "$DATA" ${MD:+--md "$MD"}

@@ -11,7 +11,8 @@ Subcommands (run with a python that has numpy and rasterio, e.g. /work/avaframe-
 
   table WORK_DIR CASE [CASE ...] [--md FILE]
       reads the AvaFrame outputs (WORK_DIR/avaframe/<case>) and the Talus outputs
-      (WORK_DIR/talus/<case>/out), computes the metrics below and prints a Markdown table.
+      (WORK_DIR/talus/<case>/out and any out_<label> variant), computes the metrics below and
+      prints a Markdown table.
 
 Metrics (cells on the DEM grid; thicknesses compared slope-normal: Talus' vertical hsmax/hsfinal are
 multiplied by cos(theta) of the DEM, AvaFrame's pft/FT are slope-normal already):
@@ -25,8 +26,8 @@ multiplied by cos(theta) of the DEM, AvaFrame's pft/FT are slope-normal already)
   alpha           atan((z_top - z_far) / travel distance) for that farthest affected cell
   runout          largest projection of an affected cell, measured from the release centroid, onto
                   the main flow direction: the unit vector from the release centroid to the
-                  centroid of the union of both codes' affected areas (one direction per case)
-  Jaccard         |A_avaframe & A_talus| / |A_avaframe | A_talus| of the affected areas
+                  centroid of the union of all runs' affected areas (one direction per case)
+  Jaccard         |A_avaframe & A_talus| / |A_avaframe | A_talus| of the affected areas, per Talus run
 """
 import argparse
 import glob
@@ -194,17 +195,19 @@ def table(args):
             ts = sorted(glob.glob(str(pk / "timeSteps" / "*_FT_t*.tif")))
             tfin = float(ts[-1].rsplit("_t", 1)[1][:-4]) if ts else float("nan")
             runs["AvaFrame com1DFA"] = (pft, ft, pfv, tfin, info["wall_s"])
-        # Talus
-        tdir = work / "talus" / case / "out"
-        if (tdir / "summary.json").exists():
+        # Talus: out (defaults) and out_<label> (variants of terrain_avaframe.sh's TALUS_SET)
+        for tdir in sorted((work / "talus" / case).glob("out*")):
+            if not (tdir / "summary.json").exists():
+                continue
             s = json.loads((tdir / "summary.json").read_text())
             hs = read(tdir / "hsmax.tif")[0] * cth
             hf = read(tdir / "hsfinal.tif")[0] * cth
             vs = read(tdir / "vsmax.tif")[0]
             tsim = s.get("simulated_s", s.get("simulated_seconds", s.get("end_time_s", float("nan"))))
             wall = s.get("wall_s", s.get("wall_time_s", float("nan")))
-            runs["Talus (" + str(s.get("status", "?")) + ")"] = (hs, hf, vs, tsim, wall)
-        # common direction: release centroid -> centroid of the union of affected areas
+            label = tdir.name[4:]
+            runs["Talus" + (" " + label if label else "") + " (" + str(s.get("status", "?")) + ")"] = (hs, hf, vs, tsim, wall)
+        # common direction: release centroid -> centroid of the union of all runs' affected areas
         masks = {k: np.nan_to_num(v[0], nan=0.0) > THRESH for k, v in runs.items()}
         if not masks:
             continue
@@ -221,15 +224,17 @@ def table(args):
             lines.append(f"| {case} | {name} | {tsim:.1f} | {wall:.1f} | {m['peak_thickness_m']:.2f} | "
                          f"{m['peak_speed_ms']:.1f} / {m['peak_speed_aff_ms']:.1f} / {m['p99_speed_aff_ms']:.1f} | {m['affected_m2']:.0f} | {m['deposit_m2']:.0f} | "
                          f"{m['runout_m']:.0f} | {m['travel_m']:.0f} | {m['alpha_deg']:.1f} |")
-        if len(masks) == 2:
-            a, b = masks.values()
+        a = masks.get("AvaFrame com1DFA")
+        for name, b in masks.items():
+            if a is None or b is a:
+                continue
             j = (a & b).sum() / max(1, (a | b).sum())
-            jac.append(f"| {case} | {j:.3f} | {(a & b).sum() * cell * cell:.0f} | {(a | b).sum() * cell * cell:.0f} |")
-            raw[case]["jaccard"] = float(j)
+            jac.append(f"| {case} | {name} | {j:.3f} | {(a & b).sum() * cell * cell:.0f} | {(a | b).sum() * cell * cell:.0f} |")
+            raw[case][name]["jaccard"] = float(j)
     lines.append("")
     if jac:
-        lines.append("| case | Jaccard of affected areas | intersection [m2] | union [m2] |")
-        lines.append("|---|---|---|---|")
+        lines.append("| case | Talus run | Jaccard of affected areas vs com1DFA | intersection [m2] | union [m2] |")
+        lines.append("|---|---|---|---|---|")
         lines.extend(jac)
     txt = "\n".join(lines) + "\n"
     print(txt)
