@@ -32,6 +32,7 @@
 #include "flow/debris_closures.cl"
 #include "flow/riemann.cl"
 #include "flow/solid_bed.cl"
+#include "flow/manning.cl"
 #ifndef DEBRIS_VISCOUS
 #define DEBRIS_VISCOUS 0
 #endif
@@ -197,6 +198,7 @@ inline void drag_relax(__constant const DebrisParams* dp, Material mat, real hs,
 __kernel void debris_stage(__constant const FlowParams* p, __constant const DebrisParams* dp,
                            __global const uchar* mask, __global const int* tile_list, __global const real* b,
                            __global const real* gp, __global const real* gn, __global const real* curv, __global const real* manning,
+                           __global const real* fslope,
                            __global const real* delta, __global const real* cohesion,
                            __global const real* pbed, __global real* impulse,
                            __global const real* S_base, __global const real* hf_base, __global const real* qfx_base,
@@ -443,9 +445,7 @@ __kernel void debris_stage(__constant const FlowParams* p, __constant const Debr
                                  hsn > p->h_dry ? qs[1] / hsn : (real)0, qf, ds);
 #endif
   if (hfn > p->h_dry && manning[k] > (real)0) {
-    const real uf = qf[0] / hfn, vf = qf[1] / hfn;
-    const real n2 = manning[k] * manning[k];
-    const real factor = (real)1 + ds * GRAVITY * n2 * sqrt(uf * uf + vf * vf) / (hfn * cbrt(hfn));
+    const real factor = manning_factor(manning[k], hfn, qf[0] / hfn, qf[1] / hfn, fslope[k], fslope[n + k], gnk / (real)GRAVITY, ds);
     qf[0] /= factor;
     qf[1] /= factor;
   }

@@ -56,6 +56,7 @@ FlowSolver::FlowSolver(compute::Context& ctx, const Grid& grid, const FlowSettin
       gn_(ctx, grid.cells(), "g_n"),
       manning_(ctx, grid.cells(), "manning"),
       slopeSpeed_(ctx, grid.cells(), "slope speed"),
+      frictionSlope_(ctx, 2 * grid.cells(), "friction slope"),
       h_(ctx, grid.cells(), "h"),
       qx_(ctx, grid.cells(), "qx"),
       qy_(ctx, grid.cells(), "qy"),
@@ -114,6 +115,13 @@ void FlowSolver::setInput(const FlowInput& in, double startTime) {
   gp_.upload(sg.gp);
   gn_.upload(sg.gn);
   slopeSpeed_.upload(sg.slopeSpeed);
+  {
+    // Manning's friction follows the bed where the slope correction does (flow/manning.cl).
+    std::vector<double> slope(2 * n, 0.0);
+    if (settings_.slopeCorrection)
+      for (std::size_t k = 0; k < n; ++k) slope[k] = sg.slopeX[k], slope[n + k] = sg.slopeY[k];
+    frictionSlope_.upload(slope);
+  }
   maxSlopeSpeed_ = 0;
   for (std::size_t k = 0; k < n; ++k)
     if (in.mask[k]) maxSlopeSpeed_ = std::max(maxSlopeSpeed_, sg.slopeSpeed[k]);
@@ -249,7 +257,7 @@ void FlowSolver::enqueueStage(const compute::RealBuffer& hSt, const compute::Rea
 }
 
 void FlowSolver::enqueueFriction(double dt) {
-  friction_.bind(params_, mask_, tileList_, manning_, h_, qx_, qy_, compute::RealArg{dt});
+  friction_.bind(params_, mask_, tileList_, manning_, gn_, frictionSlope_, h_, qx_, qy_, compute::RealArg{dt});
   friction_.launch(tileRange(), kLocal2D);
 }
 

@@ -173,6 +173,7 @@ class FlowSolver {
   std::size_t domainCells_ = 0;  ///< cells inside the domain (the rain volume is rainDepth x these x dx^2)
   bool hasFriction_ = true;  ///< false when Manning's n is zero everywhere: friction is not launched
   compute::RealBuffer bed_, gp_, gn_, manning_, slopeSpeed_;
+  compute::RealBuffer frictionSlope_;  ///< b_x, b_y for Manning (zero with slope correction off), 2 n values
   compute::RealBuffer h_, qx_, qy_, h1_, qx1_, qy1_;
   compute::RealBuffer outStep_, partial_;
   compute::RealBuffer hMax_, vMax_, arrival_;

@@ -9,8 +9,8 @@ namespace talus::sim {
 namespace {
 
 // Per-cell buffers of flow::FlowSolver, in reals (see its member list and FlowSolverDebris.cpp).
-constexpr int kWaterArrays = 15;     // bed, g_p, g_n, Manning, slope speed, h/qx/qy and their stage
-                                     // copies, outflow, h max, v max, arrival
+constexpr int kWaterArrays = 17;     // bed, g_p, g_n, Manning, slope speed, Manning's slope (2), h/qx/qy
+                                     // and their stage copies, outflow, h max, v max, arrival
 constexpr int kTwoPhaseArrays = 27;  // solid state at two stages (2 x 6), delta, cohesion, maxima (7),
                                      // curvature (3), slope (2), outflow of the solids
 constexpr int kParticleBedArrays = 5;  // particle bed (3) and its impulse (2)

@@ -34,6 +34,8 @@ CpuFlowReference::CpuFlowReference(const Grid& grid, const flow::FlowSettings& s
   gn_ = sg.gn;
   slope_ = sg.slopeSpeed;
   gp_ = sg.gp;
+  bx_ = settings.slopeCorrection ? sg.slopeX : std::vector<double>(n, 0.0);
+  by_ = settings.slopeCorrection ? sg.slopeY : std::vector<double>(n, 0.0);
   hMax_ = h_;
   vMax_.assign(n, 0.0);
   arrival_.assign(n, -1.0);
@@ -239,13 +241,16 @@ double CpuFlowReference::rkStage(const State& s, const State* base, double dt, S
   return outward;
 }
 
-// q <- q / (1 + dt g n^2 |u| / h^(4/3)): the linearised implicit Manning step of friction.cl.
+// q <- q / (1 + dt g n^2 |U| / h_n^(4/3)): the linearised implicit Manning step of friction.cl along
+// the bed (manning.cl): |U| = sqrt(|u|^2 + (u.grad b)^2), h_n = h cos(theta), cos^2 = g_n / g.
 void CpuFlowReference::friction(double dt) {
   for (std::size_t k = 0; k < grid_.cells(); ++k) {
     if (!mask_[k] || h_[k] <= settings_.hDry || manning_[k] <= 0.0) continue;
     const double u = velocity(h_[k], qx_[k]), v = velocity(h_[k], qy_[k]);
     const double n = manning_[k];
-    const double factor = 1.0 + dt * kGravity * n * n * std::sqrt(u * u + v * v) / std::pow(h_[k], 4.0 / 3.0);
+    const double w = u * bx_[k] + v * by_[k];
+    const double hn = h_[k] * std::sqrt(gn_[k] / kGravity);
+    const double factor = 1.0 + dt * kGravity * n * n * std::sqrt(u * u + v * v + w * w) / std::pow(hn, 4.0 / 3.0);
     qx_[k] /= factor;
     qy_[k] /= factor;
   }

@@ -89,6 +89,7 @@ class CpuFlowReference {
   flow::FlowSettings settings_;
   std::vector<unsigned char> mask_;
   std::vector<double> bed_, manning_, gn_, gp_, slope_;  // slope_: bed-slope CFL speed
+  std::vector<double> bx_, by_;  // bed slope for Manning along the bed (zero with slope correction off)
   std::vector<double> h_, qx_, qy_, hMax_, vMax_, arrival_;
   double time_ = 0;
   double clampedVolume_ = 0;
