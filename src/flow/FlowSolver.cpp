@@ -18,7 +18,9 @@ const compute::Range kLocal2D{kTile, kTile};
 
 std::string buildOptions(const FlowSettings& s) {
   return "-DLIMITER=" + std::to_string(static_cast<int>(s.limiter)) +
-         " -DRIEMANN=" + std::to_string(static_cast<int>(s.riemann)) + " -DTILE=" + std::to_string(kTile);
+         " -DRIEMANN=" + std::to_string(static_cast<int>(s.riemann)) + " -DTILE=" + std::to_string(kTile) +
+         // Manning's friction acts along the bed where the slope correction is on (flow/manning.cl).
+         " -DMANNING_ALONG_BED=" + (s.slopeCorrection ? "1" : "0");
 }
 
 template <class Real>
@@ -56,7 +58,7 @@ FlowSolver::FlowSolver(compute::Context& ctx, const Grid& grid, const FlowSettin
       gn_(ctx, grid.cells(), "g_n"),
       manning_(ctx, grid.cells(), "manning"),
       slopeSpeed_(ctx, grid.cells(), "slope speed"),
-      frictionSlope_(ctx, 2 * grid.cells(), "friction slope"),
+      bedSlope_(ctx, 2 * grid.cells(), "bed slope"),
       h_(ctx, grid.cells(), "h"),
       qx_(ctx, grid.cells(), "qx"),
       qy_(ctx, grid.cells(), "qy"),
@@ -116,21 +118,15 @@ void FlowSolver::setInput(const FlowInput& in, double startTime) {
   gn_.upload(sg.gn);
   slopeSpeed_.upload(sg.slopeSpeed);
   {
-    // Manning's friction follows the bed where the slope correction does (flow/manning.cl).
-    std::vector<double> slope(2 * n, 0.0);
-    if (settings_.slopeCorrection)
-      for (std::size_t k = 0; k < n; ++k) slope[k] = sg.slopeX[k], slope[n + k] = sg.slopeY[k];
-    frictionSlope_.upload(slope);
-  }
-  maxSlopeSpeed_ = 0;
-  for (std::size_t k = 0; k < n; ++k)
-    if (in.mask[k]) maxSlopeSpeed_ = std::max(maxSlopeSpeed_, sg.slopeSpeed[k]);
-  if (settings_.twoPhase) {
-    curvature_.upload(settings_.curvature ? sg.curvature : std::vector<double>(sg.curvature.size(), 0.0));
     std::vector<double> slope = sg.slopeX;
     slope.insert(slope.end(), sg.slopeY.begin(), sg.slopeY.end());
     bedSlope_.upload(slope);
   }
+  maxSlopeSpeed_ = 0;
+  for (std::size_t k = 0; k < n; ++k)
+    if (in.mask[k]) maxSlopeSpeed_ = std::max(maxSlopeSpeed_, sg.slopeSpeed[k]);
+  if (settings_.twoPhase)
+    curvature_.upload(settings_.curvature ? sg.curvature : std::vector<double>(sg.curvature.size(), 0.0));
   h_.upload(h);
   // Momentum of dry and outside cells is discarded, as the update does after every stage.
   auto momentum = [&](const std::vector<double>& q, const char* what) {
@@ -257,7 +253,7 @@ void FlowSolver::enqueueStage(const compute::RealBuffer& hSt, const compute::Rea
 }
 
 void FlowSolver::enqueueFriction(double dt) {
-  friction_.bind(params_, mask_, tileList_, manning_, gn_, frictionSlope_, h_, qx_, qy_, compute::RealArg{dt});
+  friction_.bind(params_, mask_, tileList_, manning_, gn_, bedSlope_, h_, qx_, qy_, compute::RealArg{dt});
   friction_.launch(tileRange(), kLocal2D);
 }
 

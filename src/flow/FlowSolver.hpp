@@ -173,7 +173,7 @@ class FlowSolver {
   std::size_t domainCells_ = 0;  ///< cells inside the domain (the rain volume is rainDepth x these x dx^2)
   bool hasFriction_ = true;  ///< false when Manning's n is zero everywhere: friction is not launched
   compute::RealBuffer bed_, gp_, gn_, manning_, slopeSpeed_;
-  compute::RealBuffer frictionSlope_;  ///< b_x, b_y for Manning (zero with slope correction off), 2 n values
+  compute::RealBuffer bedSlope_;  ///< bed slope b_x, b_y (2 n values, flow/SlopeGravity.hpp): Manning, two-phase diagnostics
   compute::RealBuffer h_, qx_, qy_, h1_, qx1_, qy1_;
   compute::RealBuffer outStep_, partial_;
   compute::RealBuffer hMax_, vMax_, arrival_;
@@ -184,7 +184,6 @@ class FlowSolver {
   compute::RawBuffer debrisParams_;
   compute::RealBuffer solid0_, solid1_, delta_, cohesion_, maxima_;
   compute::RealBuffer curvature_;  ///< bed curvature b_xx, b_xy, b_yy (flow/SlopeGravity.hpp)
-  compute::RealBuffer bedSlope_;   ///< bed slope b_x, b_y (2 n values, flow/SlopeGravity.hpp)
   compute::RealBuffer particleBed_, bedImpulse_;
   compute::Buffer<uint8_t> lock0_, lock1_;
   compute::Kernel debrisStage_, debrisTrack_, debrisDiagnostics_;

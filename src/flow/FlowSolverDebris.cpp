@@ -40,13 +40,13 @@ void FlowSolver::buildDebris() {
   delta_ = compute::RealBuffer(ctx, n, "bed friction angle");
   cohesion_ = compute::RealBuffer(ctx, n, "cohesion");
   curvature_ = compute::RealBuffer(ctx, 3 * n, "bed curvature");
-  bedSlope_ = compute::RealBuffer(ctx, 2 * n, "bed slope");
   maxima_ = compute::RealBuffer(ctx, kMaximaComponents * n, "two-phase maxima");
   lock0_ = compute::Buffer<uint8_t>(ctx, n, "static solids");
   lock1_ = compute::Buffer<uint8_t>(ctx, n, "static solids stage");
   const std::string opts = "-DLIMITER=" + std::to_string(static_cast<int>(settings_.limiter)) +
                            " -DRIEMANN=" + std::to_string(static_cast<int>(settings_.riemann)) +
                            " -DTILE=" + std::to_string(kTile) +
+                           " -DMANNING_ALONG_BED=" + (settings_.slopeCorrection ? "1" : "0") +
                            // The viscous stresses are compiled out when both Reynolds numbers are off.
                            " -DDEBRIS_VISCOUS=" + (settings_.debris.viscous() ? "1" : "0") +
                            // The particle bed of the hybrid mode is compiled out in grid mode.
@@ -107,7 +107,7 @@ void FlowSolver::enqueueDebrisStage(bool first, double dt) {
   compute::RealBuffer &hout = first ? h1_ : h_, &qxout = first ? qx1_ : qx_, &qyout = first ? qy1_ : qy_;
   compute::Buffer<uint8_t>&lst = first ? lock0_ : lock1_, &lout = first ? lock1_ : lock0_;
   if (first && settings_.particleBed) bedImpulse_.fill(0.0);  // the impulse of this step only
-  debrisStage_.bind(params_, debrisParams_, mask_, tileList_, bed_, gp_, gn_, curvature_, manning_, frictionSlope_, delta_, cohesion_,
+  debrisStage_.bind(params_, debrisParams_, mask_, tileList_, bed_, gp_, gn_, curvature_, manning_, bedSlope_, delta_, cohesion_,
                     particleBed_, bedImpulse_, solid0_, h_,
                     qx_, qy_, Sst, hst, qxst, qyst, lst, Sout, hout, qxout, qyout, lout, outStep_,
                     compute::RealArg{dt}, compute::RealArg{first ? 0.0 : 0.5}, compute::RealArg{0.5 * dt},

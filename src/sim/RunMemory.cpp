@@ -9,10 +9,10 @@ namespace talus::sim {
 namespace {
 
 // Per-cell buffers of flow::FlowSolver, in reals (see its member list and FlowSolverDebris.cpp).
-constexpr int kWaterArrays = 17;     // bed, g_p, g_n, Manning, slope speed, Manning's slope (2), h/qx/qy
-                                     // and their stage copies, outflow, h max, v max, arrival
-constexpr int kTwoPhaseArrays = 27;  // solid state at two stages (2 x 6), delta, cohesion, maxima (7),
-                                     // curvature (3), slope (2), outflow of the solids
+constexpr int kWaterArrays = 17;     // bed, g_p, g_n, Manning, slope speed, bed slope (2), h/qx/qy and
+                                     // their stage copies, outflow, h max, v max, arrival
+constexpr int kTwoPhaseArrays = 25;  // solid state at two stages (2 x 6), delta, cohesion, maxima (7),
+                                     // curvature (3), outflow of the solids
 constexpr int kParticleBedArrays = 5;  // particle bed (3) and its impulse (2)
 constexpr int kHostOutputMaps = 4;     // h, qx, qy and the speed of a report, in double
 
