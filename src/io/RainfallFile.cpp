@@ -47,7 +47,11 @@ double Rainfall::intensity(double t) const {
 double Rainfall::depth(double t0, double t1) const {
   if (times_.empty() || !(t1 > t0)) return 0.0;
   double sum = 0;  // mm/h x s
-  for (std::size_t k = 0; k < times_.size(); ++k) {
+  // From the record that holds at t0 (binary search: called every step, files hold thousands of
+  // records) to the last one that starts before t1.
+  const auto after = std::upper_bound(times_.begin(), times_.end(), t0);
+  for (std::size_t k = after == times_.begin() ? 0 : static_cast<std::size_t>(after - times_.begin()) - 1;
+       k < times_.size() && (k == 0 || times_[k] < t1); ++k) {
     const double from = k == 0 ? -HUGE_VAL : times_[k];
     const double to = k + 1 < times_.size() ? times_[k + 1] : HUGE_VAL;
     const double overlap = std::min(to, t1) - std::max(from, t0);

@@ -9,8 +9,9 @@ namespace talus::sim {
 namespace {
 
 // Per-cell buffers of flow::FlowSolver, in reals (see its member list and FlowSolverDebris.cpp).
-constexpr int kWaterArrays = 17;     // bed, g_p, g_n, Manning, slope speed, bed slope (2), h/qx/qy and
-                                     // their stage copies, outflow, h max, v max, arrival
+constexpr int kWaterArrays = 19;     // bed, g_p, g_n, Manning, slope speed, bed slope (2), h/qx/qy and
+                                     // their stage copies, outflow, h max, v max, arrival, infiltration
+                                     // capacity and infiltrated depth
 constexpr int kTwoPhaseArrays = 25;  // solid state at two stages (2 x 6), delta, cohesion, maxima (7),
                                      // curvature (3), outflow of the solids
 constexpr int kParticleBedArrays = 5;  // particle bed (3) and its impulse (2)
