@@ -681,13 +681,12 @@ StressOutcome runStressScene(const StressScene& scene) {
   //    re-running it with one setting changed (dt / 20, Limiter=none, cfl 0.5, cos2 or slope
   //    correction off each makes it pass; see the regression cases in tests/stress/test_stress.cpp).
   //    After the fixes those mechanisms pointed to (bed-slope speed in the CFL condition, CFL <= 0.5,
-  //    first order at wet/dry fronts), the worst remaining excess is 6.4 % of E_kin(0) + g|dP| + W:
-  //    seed 14493454552802392858, a frictionless 1 mm film on a fractal slope with the MC limiter,
-  //    whose kinetic energy is the whole released potential energy (nothing dissipates it), so the
-  //    O(dt) time-splitting error of the bed source shows undamped. Frictionless thin water on
-  //    near-vertical ramps resolved by a few coarse cells (gradient 5-8 on 15 m cells, 1 cm of water:
-  //    the hydrostatic reconstruction treats each cell as a 100 m step, the known weakness of HR on
-  //    steep slopes, Delestre et al. 2012) gain more with van Leer and MC (not checked, see below).
+  //    the subcell face bed and the minmod bed under the limited surface), every limiter is checked:
+  //    frictionless thin water on near-vertical ramps resolved by a few coarse cells, which gained
+  //    up to ~25 % with van Leer and MC through false face-bed rises (seeds 14493454552802392858,
+  //    3610104951568155784, 8348562632382950745), now stays within (energy ratio 0 for all three).
+  //    A 300-scene soak from base seed 777 still finds 3 MC / van Leer scenes of a few coarse cells
+  //    over fractal pits and cliffs above the slack (docs/numerics.md, known limitations).
   //    The failures the check exists for exceeded the bound by factors of 10 to 1e10; kSlackRel =
   //    20 % sits well between;
   //  - rounding: P is a sum of h (b - bmin + h/2) whose h carry the kernels' rounding, so
@@ -796,16 +795,15 @@ StressOutcome runStressScene(const StressScene& scene) {
 
     // Energy, for every scene and limiter (the compressive limiters' exemption on frictionless
     // steep terrain went with the minmod face bed of reconstruct_surface, flow_common.cl).
-    const bool energyChecked = true;
     slopeWork += dt * std::max(before.slopeWorkRate, t.slopeWorkRate);
     const double released = kGravity * (t0.potential - t.potential);
     const double slack = kSlackRel * (t0.kinetic + std::fabs(released) + slopeWork) +
                          8 * eps * kGravity * t0.potential * std::sqrt(static_cast<double>(st));
     const double excess = t.kinetic - t0.kinetic - released - slopeWork;
-    if (energyChecked) out.energyRatio = std::max(out.energyRatio, excess / std::max(slack, 1e-300));
+    out.energyRatio = std::max(out.energyRatio, excess / std::max(slack, 1e-300));
     const double budget = t0.kinetic + std::max(released, 0.0) + slopeWork;
-    if (budget > 0 && energyChecked) out.energyGainFraction = std::max(out.energyGainFraction, t.kinetic / budget);
-    if (energyChecked && !(excess <= slack)) {
+    if (budget > 0) out.energyGainFraction = std::max(out.energyGainFraction, t.kinetic / budget);
+    if (!(excess <= slack)) {
       fail("kinetic energy " + num(t.kinetic) + " exceeds E_kin(0) + g dP + slope work = " + num(t0.kinetic) +
            " + " + num(released) + " + " + num(slopeWork) + " by " + num(excess) + " (slack " + num(slack) +
            ") [per unit density, m^5/s^2]" + context());
