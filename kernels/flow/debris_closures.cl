@@ -17,6 +17,8 @@ typedef struct {
   int drag_law;        // DRAG_OFF, DRAG_LINEAR (j = 1), DRAG_QUADRATIC (j = 2)
   int virtual_mass;    // 1: virtual mass in the phase exchange
   int delta_from_phi;  // 1: bed friction angle = internal friction angle of the cell
+  int rheology;        // basal law of the solids: RHEOLOGY_* of basal_rheology.cl
+  int pad_int;
   real k_const;        // constant earth-pressure coefficient
   real rho_f;          // fluid density [kg/m^3]
   real pore_b;         // basal pore-pressure factor B (scales buoyancy in the basal normal stress)
@@ -34,7 +36,8 @@ typedef struct {
   real inv_nra;        // 1 / N_RA, interfacial Reynolds number of the non-Newtonian stress (0: off)
   real chi;            // vertical shear factor of the fluid velocity (basal viscous term)
   real xi;             // vertical solid-fraction profile factor (basal interfacial term)
-  real pad0, pad1, pad2;
+  real rheo[4];        // parameters of the basal law (src/flow/Rheology.cpp)
+  real pad0;
 } DebrisParams;
 
 /// Solid velocity desingularised in films (Kurganov & Petrova 2007, eq. 2.21, with eps = max(h_dry,

@@ -11,8 +11,9 @@
 //   walls they make) is in solid_bed.cl.
 // Passive scalars carried with the solids (conserved as h_s * value): tan of nothing, but the
 //   internal friction angle phi, the solid density rho_s and the grain size d, upwinded.
-// Sources S (implicit, per stage, first order in time): Coulomb friction tan(delta) (1 - B gamma_eff)
-//   g_n h_s on the solids, then drag with virtual mass as an exact, momentum-conserving relaxation of
+// Sources S (implicit, per stage, first order in time): the solids' basal law (basal_rheology.cl:
+//   Coulomb friction tan(delta) (1 - B gamma_eff) g_n h_s by default, or Voellmy, mu(I), Bingham,
+//   Herschel-Bulkley), then drag with virtual mass as an exact, momentum-conserving relaxation of
 //   the phase velocities (held solids stay at rest), then the basal viscous terms and Manning on the
 //   fluid; friction can stop motion but never reverse it.
 // Viscous stress of the fluid (P.30, compiled in with -DDEBRIS_VISCOUS=1): face fluxes of
@@ -33,6 +34,7 @@
 #include "flow/riemann.cl"
 #include "flow/solid_bed.cl"
 #include "flow/manning.cl"
+#include "flow/basal_rheology.cl"
 #ifndef DEBRIS_VISCOUS
 #define DEBRIS_VISCOUS 0
 #endif
@@ -428,8 +430,17 @@ __kernel void debris_stage(__constant const FlowParams* p, __constant const Debr
     // The friction of the stage's own state (the thickness its bed force and pressure used): with
     // the new thickness a cell filling within the stage (every front cell) met the friction of its
     // new mass but the bed force of its old one, and Coulomb fronts lagged (docs/two_phase.md).
-    const real fric = ds * tan(mn.delta) * ((real)1 - dp->pore_b * mn.gamma) * geff * S_st[k];
-    const real f = qn <= fric ? (real)0 : (real)1 - fric / qn;
+    // The basal law of the solids (basal_rheology.cl; Coulomb by default).
+    BasalColumn col;
+    col.h_st = S_st[k];
+    col.h = hsn;
+    col.n_g = ((real)1 - dp->pore_b * mn.gamma) * geff;
+    col.g_n = geff;
+    col.cos_t = sqrt(gnk / (real)GRAVITY);
+    col.stretch = along_bed_stretch(rx, ry, fslope[k], fslope[n + k]);
+    col.rho = mn.rho_s;
+    col.tan_delta = tan(mn.delta);
+    const real f = qn > (real)0 ? basal_factor(dp, col, qn, ds) : (real)0;
     qs[0] = hsn * ucx + f * rx;
     qs[1] = hsn * ucy + f * ry;
 #if DEBRIS_OBSTACLE

@@ -15,12 +15,16 @@ struct DebrisParamsT {
   int32_t dragLaw;        // 0 off, 1 linear, 2 quadratic
   int32_t virtualMass;
   int32_t deltaFromPhi;
+  int32_t rheology;  // flow::Rheology
+  int32_t padInt;
   Real kConst, rhoF, poreB, dragMult, dragM, dragBigM, dragKappa, viscA, viscB, phiDefault, rhoSDefault, dDefault;
-  Real filmH, invNR, invNRA, chi, xi, pad0, pad1, pad2;
+  Real filmH, invNR, invNRA, chi, xi;
+  Real rheo[4];  // parameters of the basal law (flow/Rheology.hpp)
+  Real pad0;
 };
 
-static_assert(offsetof(DebrisParamsT<float>, kConst) == 16 && sizeof(DebrisParamsT<float>) == 96, "DebrisParams<float>");
-static_assert(offsetof(DebrisParamsT<double>, kConst) == 16 && sizeof(DebrisParamsT<double>) == 176,
+static_assert(offsetof(DebrisParamsT<float>, kConst) == 24 && sizeof(DebrisParamsT<float>) == 112, "DebrisParams<float>");
+static_assert(offsetof(DebrisParamsT<double>, kConst) == 24 && sizeof(DebrisParamsT<double>) == 200,
               "DebrisParams<double>");
 
 /// Material defaults of the two-phase kernels where a cell has no solids.

@@ -1,6 +1,9 @@
 // Numerical and physical options of the shallow-water solver, with their run-file defaults.
 #pragma once
+#include <array>
 #include <string>
+
+#include "flow/Rheology.hpp"
 
 namespace talus::flow {
 
@@ -33,6 +36,9 @@ struct DebrisSettings {
   double reynoldsInterfacial = 0;  ///< N_RA of the interfacial (non-Newtonian) stress; 0: off
   double chi = 0;                ///< vertical shear factor of the basal viscous term
   double xi = 0;                 ///< vertical solid-fraction factor of the basal interfacial term
+  /// Basal law of the solids (kernels/flow/basal_rheology.cl); Coulomb uses the delta map.
+  Rheology rheology = Rheology::Coulomb;
+  std::array<double, 4> rheologyParams{};  ///< its kernel parameters (Rheology.hpp, RheologyLaw::params)
   bool viscous() const { return reynolds > 0 || reynoldsInterfacial > 0; }
 };
 

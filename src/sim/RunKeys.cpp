@@ -4,11 +4,13 @@
 // the OpenLISEM keys Talus does not use are declared in LisemKeys.cpp.
 #include "sim/RunKeys.hpp"
 
+#include <algorithm>
 #include <limits>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "flow/Rheology.hpp"
 #include "io/RunConfig.hpp"
 #include "sim/KeyBuilders.hpp"
 
@@ -34,12 +36,42 @@ void addInputKeys(KeyRegistry& r) {
                                                                        "vertical water thickness at t = start")));
 }
 
+std::vector<std::string> rheologyNames() {
+  std::vector<std::string> names;
+  for (const flow::RheologyLaw& law : flow::rheologyLaws()) names.push_back(law.name);
+  return names;
+}
+
+/// The parameters of the basal laws (flow/Rheology.cpp), each key once, with each law's consistency rule.
+void addRheologyKeys(KeyRegistry& r) {
+  Section section(r, "Solids");
+  std::vector<std::string> declared;
+  for (const flow::RheologyLaw& law : flow::rheologyLaws()) {
+    std::vector<std::string> names;
+    for (const flow::RheologyKey& key : law.keys) {
+      names.push_back(key.name);
+      if (std::find(declared.begin(), declared.end(), key.name) != declared.end()) continue;
+      declared.push_back(key.name);
+      section << real(key.name, key.defaultValue, key.unit, key.min, key.max, key.help + " (Solid Rheology=" + law.name + ")");
+    }
+    if (names.empty()) continue;
+    names.push_back("Solid Rheology");
+    r.addRule(names, [&law](const io::RunConfig& c) -> std::string {
+      if (c.choice("Solid Rheology") != law.name) return "";
+      std::vector<double> values;
+      for (const flow::RheologyKey& key : law.keys) values.push_back(c.real(key.name));
+      return law.check(values);
+    });
+  }
+}
+
 /// Solids of the two-phase grid model (spec §4): OpenLISEM Hazard's names and units first.
 void addSolidKeys(KeyRegistry& r) {
   Section(r, "Solids")
       << lisem("0", flag("Include Initial Solids", "0", "start with the solids of Initial Solid Height (two-phase model)"))
       << lisem("initialsh.map", solidMap("Initial Solid Height", "0", "m", 0, 1e4, "vertical solid thickness alpha_s H at t = start"))
-      << lisem("initialsd.map", solidMap("Initial Solid Density", "2650", "kg/m^3", 1000, 6000, "density rho_s of the solid grains"))
+      << lisem("initialsd.map", solidMap("Initial Solid Density", "2650", "kg/m^3", 50, 6000,
+                                                     "density rho_s of the solid grains (snow: 200-500; above Fluid Density in runs with water)"))
       << lisem("initialsifa.map", solidMap("Initial Solid IFA", "0.5236", "rad", 0, 1.5, "internal friction angle phi of the solids"))
       << lisem("initialsrocksize.map", solidMap("Initial Solid Rocksize", "0.01", "m", 1e-6, 100, "representative grain or block size d"))
       // OpenLISEM's form says Pa, but its particle kernel multiplies the value by 1000 (kPa), as
@@ -48,6 +80,9 @@ void addSolidKeys(KeyRegistry& r) {
                                                 "cohesion c (reduces the lateral pressure, Bell); kPa as OpenLISEM's code reads it"))
       << flag("Bed Friction Equals IFA", "1", "bed friction angle delta = internal friction angle phi")
       << solidMap("Bed Friction Angle", "0.5236", "rad", 0, 1.5, "bed friction angle delta (when not equal to IFA)")
+      << choice("Solid Rheology", rheologyNames(), "coulomb",
+                "basal law of the solids: coulomb (Bed Friction Angle), voellmy, mu-i (Pouliquen-Forterre), "
+                "bingham or herschel-bulkley (docs/rheology.md); grid solids only (not with Use Material Point Method)")
       << choice("Earth Pressure", {"savage-hutter", "constant"}, "savage-hutter",
                 "lateral earth-pressure coefficient: active/passive from phi and delta, or constant")
       << real("Earth Pressure Coefficient", "1", "-", 0.01, 100, "K when Earth Pressure=constant")
@@ -70,6 +105,7 @@ void addSolidKeys(KeyRegistry& r) {
               "chi: basal viscous damping -chi nu_R u_f / H^2 of the fluid (needs N_R > 0)")
       << real("Viscous Profile Factor", "0", "-", 0, 100,
               "xi: damping -xi alpha_s nu_RA (u_f - u_s) / H^2 of the relative motion (needs N_RA > 0)");
+  addRheologyKeys(r);
 }
 
 /// Structured solids as particles (hybrid mode, spec §5): OpenLISEM Hazard's names first.

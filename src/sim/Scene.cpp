@@ -116,6 +116,43 @@ void setElasticity(const io::RunConfig& cfg, particles::ParticleSettings& ps) {
 
 /// Rainfall and infiltration (docs/sources.md), read only while their switches are on, as OpenLISEM
 /// does (modelruninit.cpp lines 24, 252, 382). Both act on the water of the single-phase model.
+/// The solids' basal law (flow/Rheology.hpp) and its parameters. The particles have Coulomb
+/// friction only, so another law in hybrid mode is refused rather than silently half applied.
+void setRheology(const io::RunConfig& cfg, Scene& s) {
+  const std::string name = cfg.choice("Solid Rheology");
+  const flow::RheologyLaw& law = flow::rheologyLaw(name);
+  if (s.particles.enabled && law.id != flow::Rheology::Coulomb)
+    throw InputError(cfg.origin("Solid Rheology") + ": key 'Solid Rheology': '" + name +
+                     "' applies to the grid's solids only; with Use Material Point Method=1 the particles "
+                     "have Coulomb friction (use Solid Rheology=coulomb or switch the particles off)");
+  std::vector<double> values;
+  for (const flow::RheologyKey& key : law.keys) values.push_back(cfg.real(key.name));
+  s.settings.debris.rheology = law.id;
+  s.settings.debris.rheologyParams = law.params(values);
+}
+
+/// Solids lighter than the fluid (snow, say, with water) would float: the buoyancy ratio gamma =
+/// rho_f / rho_s >= 1 turns their lateral pressure and basal stress negative (spec §4). Dry runs
+/// (no water and no rain) take any density.
+void requireSolidsHeavierThanFluid(const io::RunConfig& cfg, const Scene& s) {
+  if (s.flow.hs.empty() || s.flow.rhoS.empty()) return;
+  bool fluid = false;
+  for (std::size_t k = 0; k < s.flow.h.size(); ++k) fluid = fluid || (s.dem.valid[k] && s.flow.h[k] > 0);
+  for (double i : s.rainfall.intensities()) fluid = fluid || i > 0;
+  if (!fluid) return;
+  const double rhoF = cfg.real("Fluid Density");
+  const Grid& g = s.dem.grid;
+  for (int j = 0; j < g.ny; ++j)
+    for (int i = 0; i < g.nx; ++i) {
+      const std::size_t k = static_cast<std::size_t>(j) * g.nx + i;
+      if (!s.dem.valid[k] || s.flow.hs[k] <= 0 || s.flow.rhoS[k] > rhoF) continue;
+      throw InputError(cfg.origin("Initial Solid Density") + ": key 'Initial Solid Density': " +
+                       io::formatNumber(s.flow.rhoS[k]) + " kg/m^3 at " + cellText(g, i, j) +
+                       " is not above Fluid Density (" + io::formatNumber(rhoF) +
+                       " kg/m^3) in a run with water: the solids would float; light solids (snow) run dry");
+    }
+}
+
 void loadSources(const io::RunConfig& cfg, const MapLoader& loadMap, Scene& s) {
   if (cfg.flag("Include Rainfall")) {
     if (!cfg.isDefault("Rainfall Intensity")) {
@@ -321,6 +358,8 @@ Scene loadScene(const io::RunConfig& cfg) {
   s.checkpointInterval = minutesOnReportGrid(cfg.real("Checkpoint Interval"), s.reportInterval);
   s.checkpointWallInterval = 60.0 * cfg.real("Checkpoint Wall Interval");
   loadSources(cfg, loadMap, s);
+  setRheology(cfg, s);
+  requireSolidsHeavierThanFluid(cfg, s);
   requireMemoryForRun(s, demKey.file);
   return s;
 }
