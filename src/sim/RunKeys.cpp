@@ -42,20 +42,26 @@ std::vector<std::string> rheologyNames() {
   return names;
 }
 
-/// The parameters of the basal laws (flow/Rheology.cpp), each key once, with each law's consistency rule.
+/// The parameters of the basal laws (flow/Rheology.cpp), each key once (naming the laws that read
+/// it), with each law's consistency rule.
 void addRheologyKeys(KeyRegistry& r) {
+  const std::vector<flow::RheologyLaw>& laws = flow::rheologyLaws();
   Section section(r, "Solids");
   std::vector<std::string> declared;
-  for (const flow::RheologyLaw& law : flow::rheologyLaws()) {
-    std::vector<std::string> names;
+  for (const flow::RheologyLaw& law : laws)
     for (const flow::RheologyKey& key : law.keys) {
-      names.push_back(key.name);
       if (std::find(declared.begin(), declared.end(), key.name) != declared.end()) continue;
       declared.push_back(key.name);
-      section << real(key.name, key.defaultValue, key.unit, key.min, key.max, key.help + " (Solid Rheology=" + law.name + ")");
+      std::string users;
+      for (const flow::RheologyLaw& other : laws)
+        for (const flow::RheologyKey& k : other.keys)
+          if (k.name == key.name) users += (users.empty() ? "" : " or ") + other.name;
+      section << real(key.name, key.defaultValue, key.unit, key.min, key.max, key.help + " (Solid Rheology=" + users + ")");
     }
-    if (names.empty()) continue;
-    names.push_back("Solid Rheology");
+  for (const flow::RheologyLaw& law : laws) {
+    if (law.keys.empty()) continue;
+    std::vector<std::string> names{"Solid Rheology"};
+    for (const flow::RheologyKey& key : law.keys) names.push_back(key.name);
     r.addRule(names, [&law](const io::RunConfig& c) -> std::string {
       if (c.choice("Solid Rheology") != law.name) return "";
       std::vector<double> values;

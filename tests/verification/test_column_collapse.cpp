@@ -74,6 +74,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -130,6 +131,8 @@ struct CollapseCase {
   double deltaDeg = kDeltaDeg;
   double phiDeg = kPhiDeg;
   double tMax = 0;  ///< run at most this long [s]; 0: the default below
+  fl::Rheology rheology = fl::Rheology::Coulomb;  ///< basal law (flow/Rheology.hpp)
+  std::array<double, 4> rheo{};                   ///< its kernel parameters
 };
 
 struct CollapseResult {
@@ -185,6 +188,8 @@ CollapseResult runCollapse(const CollapseCase& c) {
   s.debris.earthPressure = c.earth;
   s.debris.kConst = 1.0;
   s.debris.deltaFromPhi = false;
+  s.debris.rheology = c.rheology;
+  s.debris.rheologyParams = c.rheo;
   fl::FlowSolver solver(talus::test::testContext(Precision::Double), grid, s);
   solver.setInput(in);
   const double v0 = talus::test::readState(solver).volumeSolid(r.dx);
@@ -505,5 +510,45 @@ TEST(ColumnCollapse, ValidationSeries) {
     print(k1, "K=1 delta=phi");
     checkRun(k1, 1.0);
     writeExtra("constant-K1-delta-eq-phi", fine, 1.0, k1);
+  }
+}
+
+// The collapse with the Pouliquen-Forterre mu(I) basal law (kernels/flow/basal_rheology.cl) and
+// the glass-bead parameters of Pouliquen & Forterre (2002): zeta_1 = 21 deg, zeta_2 = 30.7 deg,
+// beta = 0.136, L = 0.65 mm, K = 1. Measured (20 cells per d_i): (d_inf - d_i)/d_i = 1.30, 2.80, 4.35,
+// 9.30, 26.45 for a = 0.5, 1, 1.5, 3, 8, i.e. 2.2-3.5 times Lube's: mu(I) does not bring the
+// depth-averaged collapse to Lube's runouts (issue 19 asked for +-15 %). The friction lies between
+// tan(zeta_1) (fast, thick) and mu_stop -> tan(zeta_2) (thin, slow), and what the depth-averaged
+// equations miss is not basal friction but the column's non-hydrostatic free fall: the full 2D mu(I)
+// rheology reproduces Lube's collapses (Lagree, Staron & Popinet 2011, J. Fluid Mech. 686), while
+// shallow models need the vertical motion modelled (Larrieu, Staron & Hinch 2006, J. Fluid Mech.
+// 554). Asserted here what the law must give: since tan(zeta_1) <= mu <= tan(zeta_2) pointwise, the
+// runout lies between those of the Coulomb collapses with delta = zeta_2 and delta = zeta_1 (the
+// same grid, K = 1), strictly inside (the law is neither), and the usual invariants hold.
+TEST(ColumnCollapse, MuIRunoutBetweenItsCoulombBounds) {
+  const double z1 = 21.0, z2 = 30.7;
+  for (const double a : {1.0, 3.0}) {
+    CollapseCase c;
+    c.a = a;
+    c.earth = fl::EarthPressure::Constant;
+    c.tMax = 4.0;
+    c.deltaDeg = z1;
+    const CollapseResult lo = runCollapse(c);  // least friction: longest runout
+    c.deltaDeg = z2;
+    const CollapseResult hi = runCollapse(c);
+    c.deltaDeg = kDeltaDeg;  // unused by mu(I); bounds (a) and (b) of checkRun with delta = zeta_1
+    c.rheology = fl::Rheology::MuI;
+    c.rheo = {std::tan(z1 * kDeg), std::tan(z2 * kDeg), 0.136, 6.5e-4};
+    CollapseResult mi = runCollapse(c);
+    print(lo, "Coulomb z1");
+    print(hi, "Coulomb z2");
+    print(mi, "mu(I)");
+    EXPECT_LT(mi.dInf, lo.dInf) << "a " << a << ": mu(I) ran out as far as Coulomb with delta = zeta_1";
+    EXPECT_GT(mi.dInf, hi.dInf) << "a " << a << ": mu(I) stopped as short as Coulomb with delta = zeta_2";
+    EXPECT_LE(mi.massErr, 1e-13);
+    EXPECT_EQ(mi.symErr, 0.0);
+    EXPECT_GT(mi.tStop, 0.0) << "a " << a << ": the mu(I) collapse never came exactly to rest";
+    mi.deltaDeg = z1;  // the weakest friction the law has, for the static and ballistic bounds
+    checkRun(mi, 1.0);
   }
 }
