@@ -42,6 +42,12 @@ struct DebrisSettings {
   bool viscous() const { return reynolds > 0 || reynoldsInterfacial > 0; }
 };
 
+/// Entrainment of an erodible bed layer into the solids (kernels/flow/entrainment.cl).
+struct EntrainmentSettings {
+  bool enabled = false;
+  double growthRate = 0.0;  ///< E of McDougall & Hungr (2005): dV/dt = E V |U| [1/m]
+};
+
 struct FlowSettings {
   Limiter limiter = Limiter::MC;  // on the accuracy-per-cost front (docs/validation_parts/pareto.md)
   RiemannSolver riemann = RiemannSolver::HLLC;
@@ -62,6 +68,7 @@ struct FlowSettings {
   /// takes the reaction of the grid's bed forces (FlowSolver::particleBed(), bedImpulse()).
   bool particleBed = false;
   DebrisSettings debris;
+  EntrainmentSettings entrainment;  ///< two-phase only
 };
 
 Limiter parseLimiter(const std::string& name);

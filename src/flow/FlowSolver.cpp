@@ -90,6 +90,7 @@ FlowSolver::FlowSolver(compute::Context& ctx, const Grid& grid, const FlowSettin
     writeParams<float>(params_, grid, tilesX_, tilesY_, settings);
   outStep_.fill(0.0);
   if (settings.twoPhase) buildDebris();
+  if (settings.entrainment.enabled) buildEntrainment();
 }
 
 void FlowSolver::setInput(const FlowInput& in, double startTime) {
@@ -147,6 +148,7 @@ void FlowSolver::setInput(const FlowInput& in, double startTime) {
   vMax_.fill(0.0);
   arrival_.fill(-1.0);
   if (settings_.twoPhase) setDebrisInput(in, h);
+  if (settings_.entrainment.enabled) setEntrainmentInput(in);
   time_ = startTime;
   // Every tile runs the first diagnostics, which finds the wet tiles.
   activateAllTiles();
@@ -202,6 +204,7 @@ void FlowSolver::step(double dt, double rainDepth) {
   if (settings_.twoPhase) {
     enqueueDebrisStage(true, dt);
     enqueueDebrisStage(false, dt);
+    if (settings_.entrainment.enabled) enqueueEntrainment(dt);
   } else {
     enqueueStage(h_, qx_, qy_, h1_, qx1_, qy1_, dt, 0.0, true);
     enqueueStage(h1_, qx1_, qy1_, h_, qx_, qy_, dt, 0.5, false);
@@ -286,6 +289,10 @@ void FlowSolver::computeDiagnostics() {
   } else {
     diag_ = {};
   }
+  if (settings_.entrainment.enabled) {
+    diag_.erodible = reducer_.sum(erodible_, grid_.cells()) * grid_.dx * grid_.dx;
+    diag_.entrained = entrainedStep_;
+  }
   // Next step's active tiles: the wet tiles and their neighbours, as an ascending list.
   compact_.bind(params_, tileWet_, tileActive_, tileList_, tileCount_);
   compact_.launch({256}, {256});
@@ -296,6 +303,10 @@ std::vector<char> FlowSolver::saveState() const {
   std::vector<const compute::RawBuffer*> fields = {&h_.raw(), &qx_.raw(), &qy_.raw(), &hMax_.raw(), &vMax_.raw(),
                                                    &arrival_.raw()};
   if (settings_.twoPhase) fields.insert(fields.end(), {&solid0_.raw(), &maxima_.raw(), &lock0_.raw()});
+  // Entrainment changes the bed and with it every slope field: all of them are state.
+  if (settings_.entrainment.enabled)
+    fields.insert(fields.end(), {&erodible_.raw(), &bedChange_.raw(), &bed_.raw(), &gn_.raw(), &gp_.raw(),
+                                 &slopeSpeed_.raw(), &bedSlope_.raw(), &curvature_.raw()});
   std::vector<char> bytes;
   for (const compute::RawBuffer* f : fields) {
     const std::size_t at = bytes.size();
@@ -309,6 +320,9 @@ void FlowSolver::restoreState(const std::vector<char>& bytes, double time) {
   std::vector<compute::RawBuffer*> fields = {&h_.raw(), &qx_.raw(), &qy_.raw(), &hMax_.raw(), &vMax_.raw(),
                                              &arrival_.raw()};
   if (settings_.twoPhase) fields.insert(fields.end(), {&solid0_.raw(), &maxima_.raw(), &lock0_.raw()});
+  if (settings_.entrainment.enabled)
+    fields.insert(fields.end(), {&erodible_.raw(), &bedChange_.raw(), &bed_.raw(), &gn_.raw(), &gp_.raw(),
+                                 &slopeSpeed_.raw(), &bedSlope_.raw(), &curvature_.raw()});
   std::size_t total = 0;
   for (const compute::RawBuffer* f : fields) total += f->bytes();
   if (bytes.size() != total)
@@ -320,6 +334,7 @@ void FlowSolver::restoreState(const std::vector<char>& bytes, double time) {
     at += f->bytes();
   }
   time_ = time;
+  entrainedStep_ = 0;
   // Diagnostics and the active tiles follow from the state alone: recompute them over every tile.
   std::vector<int> all(static_cast<std::size_t>(tilesX_) * tilesY_);
   std::iota(all.begin(), all.end(), 0);

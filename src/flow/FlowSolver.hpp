@@ -35,6 +35,9 @@ struct FlowInput {
   std::vector<double> grain;       ///< grain size [m]
   std::vector<double> delta;       ///< bed friction angle [rad] (used unless DebrisSettings::deltaFromPhi)
   std::vector<double> cohesion;    ///< cohesion [Pa] (Bell's reduction of the lateral pressure)
+  /// Entrainment only (FlowSettings::entrainment): vertical depth of bed material the flow can take
+  /// up [m] (empty: none).
+  std::vector<double> erodible;
 };
 
 /// Reduced quantities after the last step (or after setInput).
@@ -52,6 +55,8 @@ struct FlowDiagnostics {
   double maxWaveSpeedWet = 0;  ///< maxSpeed over cells with a layer above Minimum Flow Height [m/s]
   double rain = 0;             ///< rain volume added in the last step [m^3] (docs/sources.md)
   double infiltrated = 0;      ///< volume infiltrated in the last step [m^3]
+  double erodible = 0;         ///< entrainment: erodible bed volume left [m^3]
+  double entrained = 0;        ///< entrainment: volume taken up in the last step [m^3]
 };
 
 /// Running maxima of the two-phase model (spec §8).
@@ -136,6 +141,21 @@ class FlowSolver {
   std::map<std::string, cl_mem> viewBuffers() const;
   /// Slope-corrected gravities as uploaded (for tests).
   std::vector<double> gp() const { return gp_.download(); }
+  std::vector<double> gn() const { return gn_.download(); }
+  /// Bed elevation [m], as the solver holds it (lowered by entrainment).
+  std::vector<double> bed() const { return bed_.download(); }
+  /// Entrainment: the bed change so far (negative where eroded) and the erodible depth left [m];
+  /// zeros without entrainment.
+  std::vector<double> bedChange() const;
+  std::vector<double> erodibleDepth() const;
+  bool entrainment() const { return settings_.entrainment.enabled; }
+  /// Recomputes the bed's slope fields on the device over every tile (as after a bed change; for
+  /// tests of kernels/flow/bed_geometry.cl against flow/SlopeGravity.cpp): g_n, g_p, the slope
+  /// speed, the bed slope (2 n) and, with the curvature term on, the curvature (3 n).
+  void recomputeBedGeometry();
+  std::vector<double> slopeSpeed() const { return slopeSpeed_.download(); }
+  std::vector<double> bedSlope() const { return bedSlope_.download(); }
+  std::vector<double> curvature() const;
 
  private:
   void enqueueStage(const compute::RealBuffer& hSt, const compute::RealBuffer& qxSt, const compute::RealBuffer& qySt,
@@ -156,6 +176,13 @@ class FlowSolver {
   void enqueueDebrisTrack();
   void enqueueDebrisDiagnostics();
   std::vector<double> solidComponent(int c) const;
+  // Entrainment (FlowSolverEntrainment.cpp).
+  void buildEntrainment();
+  void setEntrainmentInput(const FlowInput& in);
+  /// Takes up bed material after the step's stages, then refreshes the bed's slope fields; returns
+  /// nothing, the volumes go to diag_ after the diagnostics.
+  void enqueueEntrainment(double dt);
+  void enqueueBedGeometry();
 
   compute::Context& ctx_;
   Grid grid_;
@@ -187,6 +214,10 @@ class FlowSolver {
   compute::RealBuffer particleBed_, bedImpulse_;
   compute::Buffer<uint8_t> lock0_, lock1_;
   compute::Kernel debrisStage_, debrisTrack_, debrisDiagnostics_;
+  // Entrainment: erodible depth left, bed change, depth taken in the last step (per cell).
+  compute::RealBuffer erodible_, bedChange_, entrained_;
+  compute::Kernel entrain_, bedSlopeFields_, bedCurvatureFields_;
+  double entrainedStep_ = 0;
   compute::Kernel stage_, friction_, track_, diagnostics_, compact_, sources_;
   /// Global range covering the active tiles: one work-group of kTile x kTile per tile.
   compute::Range tileRange() const;

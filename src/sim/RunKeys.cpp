@@ -114,6 +114,20 @@ void addSolidKeys(KeyRegistry& r) {
   addRheologyKeys(r);
 }
 
+/// Entrainment of an erodible bed layer into the solids (docs/entrainment.md).
+void addEntrainmentKeys(KeyRegistry& r) {
+  Section(r, "Entrainment")
+      << flag("Include Entrainment", "0",
+              "the flow takes up bed material of Erodible Depth into its solids (two-phase grid model; not with "
+              "Use Material Point Method)")
+      << readWhen("Include Entrainment", map("Erodible Depth", "0", "m", 0, 1e4,
+                                             "vertical depth of bed material the flow can take up, as solid volume per "
+                                             "area; the bed is lowered by what is taken"))
+      << real("Entrainment Growth Rate", "0.002", "1/m", 0, 1,
+              "E of McDougall & Hungr (2005): the volume grows as dV/dt = E V |U| (calibrated as "
+              "E = ln(V_final / V_release) / path length)");
+}
+
 /// Structured solids as particles (hybrid mode, spec §5): OpenLISEM Hazard's names first.
 void addParticleKeys(KeyRegistry& r) {
   Section(r, "Particles")
@@ -230,6 +244,7 @@ KeyRegistry buildKeys() {
   KeyRegistry r;
   addInputKeys(r);
   addSolidKeys(r);
+  addEntrainmentKeys(r);
   addParticleKeys(r);
   addTimeKeys(r);
   addFlowKeys(r);

@@ -291,6 +291,15 @@ Scene loadScene(const io::RunConfig& cfg) {
       s.flow.delta = std::move(delta);
     }
   }
+  if (cfg.flag("Include Entrainment")) {
+    if (s.particles.enabled)
+      throw InputError(cfg.origin("Include Entrainment") + ": key 'Include Entrainment': entrainment is not available "
+                       "with Use Material Point Method=1 (the particles' bed does not erode)");
+    s.flow.erodible = loadMap("Erodible Depth", "erodible bed");
+    f.entrainment.enabled = true;
+    f.entrainment.growthRate = cfg.real("Entrainment Growth Rate");
+    f.twoPhase = true;  // entrained material joins the solids (default properties where none were)
+  }
   if (s.particles.enabled) {
     particles::ParticleSettings& ps = s.particles.settings;
     setElasticity(cfg, ps);

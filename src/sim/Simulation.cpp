@@ -48,11 +48,22 @@ Simulation::Simulation(const Scene& scene, const io::RunConfig& config, const st
     const double rain = scene.rainfall.depth(scene.startTime, scene.endTime);
     for (double& h : bound.h) h += rain;
     health_ = std::make_unique<HealthCheck>(scene.dem, bound, scene.settings);
+  } else if (scene.settings.entrainment.enabled && !scene.flow.erodible.empty()) {
+    // Entrainment lowers the bed by at most the erodible depth and thickens the flow by as much:
+    // the bound takes both as if they were there at the start (the surface b + h_s stays).
+    flow::FlowInput bound = scene.flow;
+    if (bound.hs.empty()) bound.hs.assign(bound.bed.size(), 0.0);
+    for (std::size_t k = 0; k < bound.bed.size(); ++k) {
+      bound.bed[k] -= scene.flow.erodible[k];
+      bound.hs[k] += scene.flow.erodible[k];
+    }
+    health_ = std::make_unique<HealthCheck>(scene.dem, bound, scene.settings);
   } else {
     health_ = std::make_unique<HealthCheck>(scene.dem, scene.flow, scene.settings);
   }
   for (uint8_t v : scene.dem.valid) domainCells_ += v;
   initialVolume_ = totalVolume(solver_->diagnostics());
+  initialErodible_ = solver_->diagnostics().erodible;
   {
     double fluid = 0;
     for (double h : scene.flow.h) fluid += std::max(h, 0.0);
@@ -98,6 +109,12 @@ Simulation::Simulation(const Scene& scene, const io::RunConfig& config, const st
   totalOutflow_ = c.totalOutflow;
   totalRain_ = c.totalRain;
   totalInfiltrated_ = c.totalInfiltrated;
+  if (solver_->entrainment()) {  // what was left at the checkpoint plus what the bed lost before it
+    double eroded = 0;
+    for (double d : solver_->bedChange()) eroded -= d;
+    const double area = scene.dem.grid.dx * scene.dem.grid.dx;
+    initialErodible_ = solver_->diagnostics().erodible + eroded * area;
+  }
   wallBefore_ = c.elapsedWall;
   seriesIndex_ = c.seriesIndex;
   out_->prepare();
@@ -144,9 +161,13 @@ double Simulation::wall() const {
   return wallBefore_ + std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
 }
 
+double Simulation::totalEntrained() const {
+  return solver_->entrainment() ? initialErodible_ - solver_->diagnostics().erodible : 0.0;
+}
+
 double Simulation::volumeBalance(double volume) const {
-  // Sources and sinks: V_0 + rain = V + outflow + infiltrated when volume is conserved.
-  const double supplied = initialVolume_ + totalRain_;
+  // Sources and sinks: V_0 + rain + entrained = V + outflow + infiltrated when volume is conserved.
+  const double supplied = initialVolume_ + totalRain_ + totalEntrained();
   return supplied > 0 ? (volume + totalOutflow_ + totalInfiltrated_ - supplied) / supplied : 0.0;
 }
 
@@ -289,6 +310,7 @@ RunSummary Simulation::finalize(Ending ending) {
   s.cellUpdatesPerSecond = s.wallSeconds > 0 ? static_cast<double>(domainCells_) * s.steps / s.wallSeconds : 0;
   s.totalRain = totalRain_;
   s.totalInfiltrated = totalInfiltrated_;
+  s.totalEntrained = totalEntrained();
   s.volumeBalanceError = volumeBalance(s.finalVolume);
   s.checkpoints = checkpoints_;
   writeFinal(s, ending);

@@ -38,6 +38,7 @@ struct RunSummary {
   double cellUpdatesPerSecond = 0;     ///< domain cells x steps / wall time
   double initialVolume = 0, finalVolume = 0, totalOutflow = 0;
   double totalRain = 0, totalInfiltrated = 0;  ///< rain added and water infiltrated [m^3] (docs/sources.md)
+  double totalEntrained = 0;           ///< bed material taken up by entrainment [m^3] (docs/entrainment.md)
   double volumeBalanceError = 0;       ///< (V_end + outflow + infiltrated - V_0 - rain) / (V_0 + rain)
   int checkpoints = 0;                 ///< checkpoints written by this process
 };
@@ -120,6 +121,10 @@ class Simulation {
   int reportIndex_ = 0;
   double initialVolume_ = 0, totalOutflow_ = 0, wallBefore_ = 0;
   double totalRain_ = 0, totalInfiltrated_ = 0;  ///< cumulative sources and sinks of the water [m^3]
+  /// Erodible volume at the start of the run (entrainment): the volume entrained so far is this minus
+  /// what is left (FlowDiagnostics::erodible), a source of the volume balance.
+  double initialErodible_ = 0;
+  double totalEntrained() const;
   double initialPotential_ = 0, initialMechanical_ = 0;  ///< two-phase energy at the initial state [J]
   double lastReleased_ = 0, lastLost_ = 0;              ///< energy columns of the last step [J]
   std::string seriesIndex_ = "index,time_s,h_file,v_file\n";

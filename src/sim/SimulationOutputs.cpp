@@ -163,6 +163,10 @@ void Simulation::writeFinal(const RunSummary& s, Ending ending) {
       });
       attempt([&] { out_->writeMap("htfinal", total); });
       attempt([&] { out_->writeMap("deposit", deposit); });
+      if (solver_->entrainment()) {  // docs/entrainment.md
+        attempt([&] { out_->writeMap("basechange", solver_->bedChange()); });
+        attempt([&] { out_->writeMap("erodiblefinal", solver_->erodibleDepth()); });
+      }
     }
   }
   if (particles_) {
@@ -216,7 +220,8 @@ std::string Simulation::summaryJson(const RunSummary& s, Ending ending) const {
     << "  \"wall_time_s\": " << s.wallSeconds << ",\n  \"cell_updates_per_s\": " << s.cellUpdatesPerSecond << ",\n"
     << "  \"volume\": {\"initial_m3\": " << s.initialVolume << ", \"final_m3\": " << s.finalVolume
     << ", \"outflow_m3\": " << s.totalOutflow << ", \"rain_m3\": " << s.totalRain
-    << ", \"infiltrated_m3\": " << s.totalInfiltrated << ", \"balance_error\": " << s.volumeBalanceError << "}";
+    << ", \"infiltrated_m3\": " << s.totalInfiltrated << ", \"entrained_m3\": " << s.totalEntrained
+    << ", \"balance_error\": " << s.volumeBalanceError << "}";
   if (solver_->twoPhase()) {
     const flow::FlowDiagnostics& dg = solver_->diagnostics();
     o << ",\n  \"energy\": {\"kinetic_J\": " << dg.kinetic << ", \"vertical_kinetic_J\": " << dg.kineticVertical

@@ -3,11 +3,14 @@
 
 Subcommands (run with a python that has numpy and rasterio, e.g. /work/avaframe-venv/bin/python):
 
-  prep CASE_DIR WORK_DIR [--phi-deg 25]
+  prep CASE_DIR WORK_DIR [--phi-deg 25] [--rheology voellmy --voellmy-mu M --voellmy-xi X]
+       [--tend-s T] [--stop-fraction F] [--density RHO]
       writes WORK_DIR/talus/<case>/{solids_vertical.tif, case.run}: the release thickness of
       release.tif (slope-normal, as AvaFrame reads it) converted to the vertical thickness Talus
       reads (h_v = h_n / cos(theta) = h_n * sqrt(1 + |grad b|^2), so both codes start with the
-      same volume), and a two-phase, solids-only run-file with Coulomb bed friction.
+      same volume), and a two-phase, solids-only run-file with Coulomb bed friction (default) or
+      the Voellmy law (Solid Rheology=voellmy, Voellmy Mu, Voellmy Xi; issue 19, item 4).
+      --stop-fraction writes Stop At Rest Fraction (com1DFA's stopCrit, 0.01 there).
 
   table WORK_DIR CASE [CASE ...] [--md FILE]
       reads the AvaFrame outputs (WORK_DIR/avaframe/<case>) and the Talus outputs
@@ -28,6 +31,15 @@ multiplied by cos(theta) of the DEM, AvaFrame's pft/FT are slope-normal already)
                   the main flow direction: the unit vector from the release centroid to the
                   centroid of the union of all runs' affected areas (one direction per case)
   Jaccard         |A_avaframe & A_talus| / |A_avaframe | A_talus| of the affected areas, per Talus run
+  along-bed speed Talus' vsmax is the horizontal speed sqrt(u^2 + v^2), com1DFA's pfv the speed along
+                  the surface; vsmax / cos(theta) (motion in the fall line, an upper bound of
+                  s |u| = sqrt(1 + (e.grad b)^2) |u|) is given beside com1DFA's pfv (comparison.json:
+                  peak_speed_bed_ms, p99_speed_bed_ms)
+  path runout     with --paths DIR (DIR/<case>/path_aimec.shp, AvaFrame's AIMEC path line): every
+                  affected cell is projected onto the nearest point of the line; runout = the largest
+                  arc length s of an affected cell minus s of the release's highest cell (path
+                  oriented from its end nearer that cell); for avaHelix the straight-line runout is
+                  meaningless (the path turns by about 90 deg)
 """
 import argparse
 import glob
@@ -82,8 +94,16 @@ def prep(args):
         ds.write(hv.astype(np.float32), 1)
     vol_v = float(hv.sum() * cell * cell)
     phi = math.radians(args.phi_deg)
+    law = "Coulomb"
+    rheo = ""
+    if args.rheology == "voellmy":
+        law = f"Voellmy (mu = {args.voellmy_mu}, xi = {args.voellmy_xi} m/s2)"
+        rheo = f"Solid Rheology=voellmy\nVoellmy Mu={args.voellmy_mu!r}\nVoellmy Xi={args.voellmy_xi!r}\n"
+    if args.density is not None:
+        rheo += f"Initial Solid Density={args.density!r}\n"
+    stop = f"Stop At Rest Fraction={args.stop_fraction!r}\n" if args.stop_fraction else ""
     run = f"""[Talus run file]
-# {case}: Coulomb comparison with AvaFrame com1DFA (tools/peers/terrain_compare.py prep).
+# {case}: {law} comparison with AvaFrame com1DFA (tools/peers/terrain_compare.py prep).
 # Release = {case_dir}/release.tif (slope-normal, 1 m) converted to vertical thickness.
 # Vertical release volume sum(h_v dx dy) = {vol_v:.1f} m3.
 [Input]
@@ -99,10 +119,10 @@ Bed Friction Angle={phi:.6f}
 Earth Pressure=constant
 Earth Pressure Coefficient=1
 Drag Law=off
-[Time]
+{rheo}[Time]
 End Time={args.tend_s / 60.0:.6f}
 Timestep=10
-[Flow]
+{stop}[Flow]
 Slope Correction=1
 Depth Pressure=cos4
 [Numerics]
@@ -116,7 +136,28 @@ Output Directory=out
                       "release_cells": int((rel > 0).sum())}))
 
 
-def metrics(peak, final, speed, dem, rel, cell, tr, direction=None):
+def path_coords(path_shp, x, y):
+    """Arc length s of the nearest point of the polyline in path_shp for each (x, y)."""
+    import shapefile
+    pts = np.asarray(shapefile.Reader(str(path_shp)).shapes()[0].points, dtype=np.float64)
+    best_d = np.full(x.shape, np.inf)
+    best_s = np.zeros(x.shape)
+    s0 = 0.0
+    for (ax, ay), (bx, by) in zip(pts[:-1], pts[1:]):
+        vx, vy = bx - ax, by - ay
+        L = math.hypot(vx, vy)
+        if L == 0:
+            continue
+        t = np.clip(((x - ax) * vx + (y - ay) * vy) / (L * L), 0.0, 1.0)
+        d = np.hypot(x - ax - t * vx, y - ay - t * vy)
+        better = d < best_d
+        best_d = np.where(better, d, best_d)
+        best_s = np.where(better, s0 + t * L, best_s)
+        s0 += L
+    return best_s, best_d, s0
+
+
+def metrics(peak, final, speed, dem, rel, cell, tr, direction=None, spath=None, speed_bed=None):
     nr, nc = dem.shape
     rows, cols = np.mgrid[0:nr, 0:nc]
     x = tr.c + (cols + 0.5) * tr.a
@@ -142,6 +183,15 @@ def metrics(peak, final, speed, dem, rel, cell, tr, direction=None):
         "alpha_deg": float(math.degrees(math.atan2(zt - dem[ifar], dm[ifar]))) if dm[ifar] > 0 else float("nan"),
         "z_far": float(dem[ifar]),
     }
+    if speed_bed is not None:
+        res["peak_speed_bed_ms"] = float(np.nanmax(np.where(aff, speed_bed, np.nan)))
+        res["p99_speed_bed_ms"] = float(np.nanpercentile(speed_bed[aff], 99))
+    if spath is not None:
+        s_path, s_len = spath
+        s_top = s_path[itop]
+        if s_top > s_len / 2:  # orient the path from the end nearer the release top
+            s_path, s_top = s_len - s_path, s_len - s_top
+        res["path_runout_m"] = float(np.where(aff, s_path, -np.inf).max() - s_top)
     xc, yc = x[relm].mean(), y[relm].mean()
     if direction is not None:
         proj = (x - xc) * direction[0] + (y - yc) * direction[1]
@@ -176,6 +226,7 @@ def table(args):
     lines.append(hdr)
     lines.append("|" + "---|" * 11)
     jac = []
+    bed = []
     raw = {}
     for case in args.cases:
         cdir = pathlib.Path(args.data) / case
@@ -194,7 +245,7 @@ def table(args):
             ft = on_grid(read(first(str(pk / "*_FT.tif")))[0], dem.shape)
             ts = sorted(glob.glob(str(pk / "timeSteps" / "*_FT_t*.tif")))
             tfin = float(ts[-1].rsplit("_t", 1)[1][:-4]) if ts else float("nan")
-            runs["AvaFrame com1DFA"] = (pft, ft, pfv, tfin, info["wall_s"])
+            runs["AvaFrame com1DFA"] = (pft, ft, pfv, tfin, info["wall_s"], pfv)
         # Talus: out (defaults) and out_<label> (variants of terrain_avaframe.sh's TALUS_SET)
         for tdir in sorted((work / "talus" / case).glob("out*")):
             if not (tdir / "summary.json").exists():
@@ -206,7 +257,7 @@ def table(args):
             tsim = s.get("simulated_s", s.get("simulated_seconds", s.get("end_time_s", float("nan"))))
             wall = s.get("wall_s", s.get("wall_time_s", float("nan")))
             label = tdir.name[4:]
-            runs["Talus" + (" " + label if label else "") + " (" + str(s.get("status", "?")) + ")"] = (hs, hf, vs, tsim, wall)
+            runs["Talus" + (" " + label if label else "") + " (" + str(s.get("status", "?")) + ")"] = (hs, hf, vs, tsim, wall, vs / cth)
         # common direction: release centroid -> centroid of the union of all runs' affected areas
         masks = {k: np.nan_to_num(v[0], nan=0.0) > THRESH for k, v in runs.items()}
         if not masks:
@@ -217,13 +268,19 @@ def table(args):
         n = math.hypot(dx, dy)
         direction = (dx / n, dy / n)
         raw[case] = {"direction": direction}
-        for name, (pk_, fin, spd, tsim, wall) in runs.items():
-            m, aff, _ = metrics(pk_, fin, spd, dem, rel, cell, tr, direction)
+        spath = None
+        if args.paths and (pathlib.Path(args.paths) / case / "path_aimec.shp").exists():
+            sp, _, slen = path_coords(pathlib.Path(args.paths) / case / "path_aimec.shp", x, y)
+            spath = (sp, slen)
+        for name, (pk_, fin, spd, tsim, wall, spd_bed) in runs.items():
+            m, aff, _ = metrics(pk_, fin, spd, dem, rel, cell, tr, direction, spath, spd_bed)
             m.update(sim_time_s=tsim, wall_s=wall)
             raw[case][name] = m
             lines.append(f"| {case} | {name} | {tsim:.1f} | {wall:.1f} | {m['peak_thickness_m']:.2f} | "
                          f"{m['peak_speed_ms']:.1f} / {m['peak_speed_aff_ms']:.1f} / {m['p99_speed_aff_ms']:.1f} | {m['affected_m2']:.0f} | {m['deposit_m2']:.0f} | "
                          f"{m['runout_m']:.0f} | {m['travel_m']:.0f} | {m['alpha_deg']:.1f} |")
+            bed.append(f"| {case} | {name} | {m['peak_speed_bed_ms']:.1f} / {m['p99_speed_bed_ms']:.1f} | "
+                       + (f"{m['path_runout_m']:.0f} |" if "path_runout_m" in m else "- |"))
         a = masks.get("AvaFrame com1DFA")
         for name, b in masks.items():
             if a is None or b is a:
@@ -236,6 +293,11 @@ def table(args):
         lines.append("| case | Talus run | Jaccard of affected areas vs com1DFA | intersection [m2] | union [m2] |")
         lines.append("|---|---|---|---|---|")
         lines.extend(jac)
+    if bed:
+        lines.append("")
+        lines.append("| case | code | peak / p99 along-bed speed, affected cells [m/s] (com1DFA: pfv; Talus: vsmax / cos theta) | runout along the AIMEC path from the release top [m] |")
+        lines.append("|---|---|---|---|")
+        lines.extend(bed)
     txt = "\n".join(lines) + "\n"
     print(txt)
     (work / "comparison.json").write_text(json.dumps(raw, indent=2, default=float))
@@ -251,11 +313,17 @@ def main():
     p.add_argument("work_dir", type=pathlib.Path)
     p.add_argument("--phi-deg", type=float, default=25.0)
     p.add_argument("--tend-s", type=float, default=150.0)
+    p.add_argument("--rheology", choices=["coulomb", "voellmy"], default="coulomb")
+    p.add_argument("--voellmy-mu", type=float, default=0.155)
+    p.add_argument("--voellmy-xi", type=float, default=4000.0)
+    p.add_argument("--stop-fraction", type=float, default=0.0)
+    p.add_argument("--density", type=float, help="Initial Solid Density [kg/m3] (default: Talus' own)")
     t = sub.add_parser("table")
     t.add_argument("work_dir", type=pathlib.Path)
     t.add_argument("cases", nargs="+")
     t.add_argument("--data", default="/work/shared/data/terrain")
     t.add_argument("--md")
+    t.add_argument("--paths", help="folder with <case>/path_aimec.shp (AvaFrame's AIMEC path lines)")
     a = ap.parse_args()
     prep(a) if a.cmd == "prep" else table(a)
 

@@ -1,0 +1,82 @@
+// The bed's slope fields recomputed on the device after the bed changed (entrainment.cl), over the
+// active tiles (bed changes happen in wet cells; the active tiles cover two cells around them).
+// The same formulas as the host's computeSlopeGravity (src/flow/SlopeGravity.cpp, its CPU reference
+// in tests/kernels/test_bed_geometry.cpp): per axis the minmod of the one-sided bed differences (one
+// side next to outside cells), the slope speed sqrt(g s_max dx) from the steepest one-sided
+// difference, g_n = g cos^2(theta), g_p = g_n or g cos^4(theta) (-DDEPTH_COS4=1), and the curvature
+// as centred differences of the limited slope (a second kernel: it reads the neighbours' slopes).
+// Built with -DSLOPE_CORRECTION=0 the gravities stay g and the curvature zero, as on the host.
+#include "flow/flow_common.cl"
+
+#ifndef SLOPE_CORRECTION
+#define SLOPE_CORRECTION 1
+#endif
+#ifndef DEPTH_COS4
+#define DEPTH_COS4 0
+#endif
+
+inline real minmod_slope(real a, real b) {
+  if (a * b <= (real)0) return (real)0;
+  return fabs(a) < fabs(b) ? a : b;
+}
+
+/// Limited slope of `f` at (i, j) along (di, dj), per unit length (SlopeGravity.cpp, limitedBedSlope).
+inline real bed_limited_slope(__constant const FlowParams* p, __global const uchar* mask, __global const real* f, int i,
+                          int j, int di, int dj) {
+  const int m = cell_inside(p, mask, i - di, j - dj), q = cell_inside(p, mask, i + di, j + dj);
+  const real c = f[cell_index(p, i, j)];
+  if (m && q) return minmod_slope(c - f[cell_index(p, i - di, j - dj)], f[cell_index(p, i + di, j + dj)] - c) / p->dx;
+  if (q) return (f[cell_index(p, i + di, j + dj)] - c) / p->dx;
+  if (m) return (c - f[cell_index(p, i - di, j - dj)]) / p->dx;
+  return (real)0;
+}
+
+__kernel void bed_slope_fields(__constant const FlowParams* p, __global const uchar* mask, __global const int* tile_list,
+                               __global const real* b, __global real* gn, __global real* gp, __global real* slope_speed,
+                               __global real* slope) {
+  const int2 c = tile_cell(p, tile_list);
+  const int i = c.x, j = c.y;
+  if (i >= p->nx || j >= p->ny || !cell_inside(p, mask, i, j)) return;
+  const int n = p->nx * p->ny;
+  const int k = cell_index(p, i, j);
+  const real bx = bed_limited_slope(p, mask, b, i, j, 1, 0), by = bed_limited_slope(p, mask, b, i, j, 0, 1);
+  slope[k] = bx;
+  slope[n + k] = by;
+  real steepest = hypot(bx, by);
+  for (int d = 0; d < 2; ++d)
+    for (int sgn = -1; sgn <= 1; sgn += 2) {
+      const int a = i + (d == 0 ? sgn : 0), e = j + (d == 1 ? sgn : 0);
+      if (cell_inside(p, mask, a, e)) steepest = fmax(steepest, fabs(b[cell_index(p, a, e)] - b[k]) / p->dx);
+    }
+  slope_speed[k] = sqrt(GRAVITY * steepest * p->dx);
+#if SLOPE_CORRECTION
+  const real cos2 = (real)1 / ((real)1 + (bx * bx + by * by));
+  gn[k] = GRAVITY * cos2;
+  gp[k] = DEPTH_COS4 ? GRAVITY * cos2 * cos2 : GRAVITY * cos2;
+#endif
+}
+
+/// Centred difference of the slope component `f` (one-sided next to outside cells).
+inline real slope_derivative(__constant const FlowParams* p, __global const uchar* mask, __global const real* f, int i,
+                             int j, int di, int dj) {
+  const int m = cell_inside(p, mask, i - di, j - dj), q = cell_inside(p, mask, i + di, j + dj);
+  const real c = f[cell_index(p, i, j)];
+  if (m && q) return (real)0.5 * (f[cell_index(p, i + di, j + dj)] - f[cell_index(p, i - di, j - dj)]) / p->dx;
+  if (q) return (f[cell_index(p, i + di, j + dj)] - c) / p->dx;
+  if (m) return (c - f[cell_index(p, i - di, j - dj)]) / p->dx;
+  return (real)0;
+}
+
+__kernel void bed_curvature_fields(__constant const FlowParams* p, __global const uchar* mask,
+                                   __global const int* tile_list, __global const real* slope, __global real* curv) {
+  const int2 c = tile_cell(p, tile_list);
+  const int i = c.x, j = c.y;
+  if (i >= p->nx || j >= p->ny || !cell_inside(p, mask, i, j)) return;
+  const int n = p->nx * p->ny;
+  const int k = cell_index(p, i, j);
+  __global const real* sx = slope;
+  __global const real* sy = slope + n;
+  curv[k] = slope_derivative(p, mask, sx, i, j, 1, 0);
+  curv[n + k] = (real)0.5 * (slope_derivative(p, mask, sx, i, j, 0, 1) + slope_derivative(p, mask, sy, i, j, 1, 0));
+  curv[2 * n + k] = slope_derivative(p, mask, sy, i, j, 0, 1);
+}

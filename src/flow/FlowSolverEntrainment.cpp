@@ -1,0 +1,92 @@
+// FlowSolver, entrainment part: the erodible bed layer, its kernel (kernels/flow/entrainment.cl) and
+// the refresh of the bed's slope fields after the bed changed (kernels/flow/bed_geometry.cl). Used
+// when FlowSettings::entrainment is on (two-phase model only).
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "compute/Program.hpp"
+#include "core/Error.hpp"
+#include "flow/FlowParams.hpp"
+#include "flow/FlowSolver.hpp"
+
+namespace talus::flow {
+namespace {
+
+const compute::Range kLocal2D{kTile, kTile};
+
+}  // namespace
+
+void FlowSolver::buildEntrainment() {
+  const std::size_t n = grid_.cells();
+  if (!settings_.twoPhase) throw InputError("entrainment needs the two-phase grid model (solids on the grid)");
+  if (settings_.particleBed) throw InputError("entrainment is not available with the particles (hybrid mode)");
+  if (!(settings_.entrainment.growthRate >= 0))
+    throw InputError("entrainment growth rate must be >= 0, not " + std::to_string(settings_.entrainment.growthRate));
+  erodible_ = compute::RealBuffer(ctx_, n, "erodible depth");
+  bedChange_ = compute::RealBuffer(ctx_, n, "bed change");
+  entrained_ = compute::RealBuffer(ctx_, n, "entrained depth");
+  const std::string opts = "-DTILE=" + std::to_string(kTile) +
+                           " -DMANNING_ALONG_BED=" + (settings_.slopeCorrection ? "1" : "0") +
+                           " -DSLOPE_CORRECTION=" + (settings_.slopeCorrection ? "1" : "0") +
+                           " -DDEPTH_COS4=" + (settings_.depthPressure == DepthPressure::Cos4 ? "1" : "0");
+  entrain_ = compute::Kernel(ctx_.program("flow/entrainment.cl", opts), "debris_entrain");
+  bedSlopeFields_ = compute::Kernel(ctx_.program("flow/bed_geometry.cl", opts), "bed_slope_fields");
+  bedCurvatureFields_ = compute::Kernel(ctx_.program("flow/bed_geometry.cl", opts), "bed_curvature_fields");
+}
+
+void FlowSolver::setEntrainmentInput(const FlowInput& in) {
+  const std::size_t n = grid_.cells();
+  std::vector<double> e = in.erodible.empty() ? std::vector<double>(n, 0.0) : in.erodible;
+  if (e.size() != n)
+    throw InputError("flow input 'erodible' has " + std::to_string(e.size()) + " values, the grid has " +
+                     std::to_string(n));
+  for (std::size_t k = 0; k < n; ++k) {
+    if (!in.mask[k]) e[k] = 0.0;
+    if (!(e[k] >= 0) || !std::isfinite(e[k]))
+      throw InputError("erodible depth must be finite and >= 0 (cell " + std::to_string(k) + ": " + std::to_string(e[k]) + ")");
+  }
+  erodible_.upload(e);
+  bedChange_.fill(0.0);
+  entrained_.fill(0.0);
+  entrainedStep_ = 0;
+}
+
+void FlowSolver::enqueueEntrainment(double dt) {
+  entrained_.fill(0.0);  // the kernel writes the active tiles' cells only
+  entrain_.bind(params_, debrisParams_, mask_, tileList_, bedSlope_, qx_, qy_, solid0_, bed_, erodible_, bedChange_,
+                entrained_, compute::RealArg{settings_.entrainment.growthRate}, compute::RealArg{dt});
+  entrain_.launch(tileRange(), kLocal2D, "debris_entrain");
+  entrainedStep_ = reducer_.sum(entrained_, grid_.cells()) * grid_.dx * grid_.dx;
+  if (entrainedStep_ > 0) enqueueBedGeometry();
+}
+
+void FlowSolver::enqueueBedGeometry() {
+  bedSlopeFields_.bind(params_, mask_, tileList_, bed_, gn_, gp_, slopeSpeed_, bedSlope_);
+  bedSlopeFields_.launch(tileRange(), kLocal2D, "bed_slope_fields");
+  if (settings_.curvature && settings_.slopeCorrection) {
+    bedCurvatureFields_.bind(params_, mask_, tileList_, bedSlope_, curvature_);
+    bedCurvatureFields_.launch(tileRange(), kLocal2D, "bed_curvature_fields");
+  }
+}
+
+void FlowSolver::recomputeBedGeometry() {
+  if (!settings_.entrainment.enabled) throw std::logic_error("recomputeBedGeometry needs entrainment on");
+  activateAllTiles();
+  enqueueBedGeometry();
+  computeDiagnostics();
+}
+
+std::vector<double> FlowSolver::bedChange() const {
+  return settings_.entrainment.enabled ? bedChange_.download() : std::vector<double>(grid_.cells(), 0.0);
+}
+
+std::vector<double> FlowSolver::erodibleDepth() const {
+  return settings_.entrainment.enabled ? erodible_.download() : std::vector<double>(grid_.cells(), 0.0);
+}
+
+std::vector<double> FlowSolver::curvature() const {
+  return settings_.twoPhase ? curvature_.download() : std::vector<double>(3 * grid_.cells(), 0.0);
+}
+
+}  // namespace talus::flow
