@@ -206,34 +206,11 @@ def run_talus(test, p, work, talus):
     write_tif(tdir / "dem.tif", dem, p)
     write_tif(tdir / "solids_vertical.tif", rel / math.cos(th), p)  # h_v = h_n / cos(theta)
     delta = math.radians(p["delta"])
-    run = f"""[Talus run file]
-# AvaFrame analytic test '{test}' (tools/peers/ana_avaframe.py): plane {p['slope']} deg, Coulomb {p['delta']} deg, K = 1.
-[Input]
-Map Directory=.
-DEM=dem.tif
-Include Initial Water=0
-[Solids]
-Include Initial Solids=1
-Initial Solid Height=solids_vertical.tif
-Initial Solid Density=200
-Initial Solid IFA={delta:.9f}
-Bed Friction Equals IFA=0
-Bed Friction Angle={delta:.9f}
-Earth Pressure=constant
-Earth Pressure Coefficient=1
-Drag Law=off
-[Time]
-End Time={p['tsave'] / 60.0:.9f}
-Timestep=1
-[Flow]
-Slope Correction=1
-Depth Pressure=cos4
-[Numerics]
-Precision=double
-[Output]
-Report Series=0
-Output Directory=out
-"""
+    sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
+    from terrain_compare import solids_runfile
+    run = solids_runfile(f"# AvaFrame analytic test '{test}' (tools/peers/ana_avaframe.py): plane {p['slope']} deg, "
+                         f"Coulomb {p['delta']} deg, K = 1.", "dem.tif", delta, p["tsave"], 1,
+                         "Initial Solid Density=200\n")
     (tdir / "case.run").write_text(run)
     subprocess.run([talus, "run", "case.run", "--out", "out", "--precision", "double", "--overwrite", "--quiet"],
                    cwd=tdir, check=True)

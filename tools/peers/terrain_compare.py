@@ -77,6 +77,38 @@ def slope_cos(dem, cell):
     return c
 
 
+def solids_runfile(comment, dem, delta, tend_s, report_s, solids_extra="", time_extra=""):
+    """A two-phase, solids-only Talus run-file: release solids_vertical.tif, bed friction delta [rad]
+    (Coulomb unless solids_extra sets another Solid Rheology), K = 1, no drag, cos^4 depth pressure."""
+    return f"""[Talus run file]
+{comment}
+[Input]
+Map Directory=.
+DEM={dem}
+Include Initial Water=0
+[Solids]
+Include Initial Solids=1
+Initial Solid Height=solids_vertical.tif
+Initial Solid IFA={delta:.6f}
+Bed Friction Equals IFA=0
+Bed Friction Angle={delta:.6f}
+Earth Pressure=constant
+Earth Pressure Coefficient=1
+Drag Law=off
+{solids_extra}[Time]
+End Time={tend_s / 60.0:.6f}
+Timestep={report_s:g}
+{time_extra}[Flow]
+Slope Correction=1
+Depth Pressure=cos4
+[Numerics]
+Precision=double
+[Output]
+Report Series=0
+Output Directory=out
+"""
+
+
 def prep(args):
     case_dir = args.case_dir.resolve()
     case = case_dir.name
@@ -102,35 +134,9 @@ def prep(args):
     if args.density is not None:
         rheo += f"Initial Solid Density={args.density!r}\n"
     stop = f"Stop At Rest Fraction={args.stop_fraction!r}\n" if args.stop_fraction else ""
-    run = f"""[Talus run file]
-# {case}: {law} comparison with AvaFrame com1DFA (tools/peers/terrain_compare.py prep).
+    run = solids_runfile(f"""# {case}: {law} comparison with AvaFrame com1DFA (tools/peers/terrain_compare.py prep).
 # Release = {case_dir}/release.tif (slope-normal, 1 m) converted to vertical thickness.
-# Vertical release volume sum(h_v dx dy) = {vol_v:.1f} m3.
-[Input]
-Map Directory=.
-DEM={case_dir}/dem.tif
-Include Initial Water=0
-[Solids]
-Include Initial Solids=1
-Initial Solid Height=solids_vertical.tif
-Initial Solid IFA={phi:.6f}
-Bed Friction Equals IFA=0
-Bed Friction Angle={phi:.6f}
-Earth Pressure=constant
-Earth Pressure Coefficient=1
-Drag Law=off
-{rheo}[Time]
-End Time={args.tend_s / 60.0:.6f}
-Timestep=10
-{stop}[Flow]
-Slope Correction=1
-Depth Pressure=cos4
-[Numerics]
-Precision=double
-[Output]
-Report Series=0
-Output Directory=out
-"""
+# Vertical release volume sum(h_v dx dy) = {vol_v:.1f} m3.""", f"{case_dir}/dem.tif", phi, args.tend_s, 10, rheo, stop)
     (out / "case.run").write_text(run)
     print(json.dumps({"case": case, "run": str(out / "case.run"), "release_volume_vertical_m3": vol_v,
                       "release_cells": int((rel > 0).sum())}))
