@@ -2,7 +2,8 @@
 // through scene loading and a whole run: the parameters reach the kernels (a Voellmy mass whose mu
 // exceeds the slope's tangent stays at rest, one with a small mu slides, with the speed a Coulomb
 // run of the same mu cannot reach), and bad combinations are refused with the key named: mu(I)
-// angles in the wrong order, another law with the particles, snow-light solids in water.
+// angles in the wrong order, another law with the particles, snow-light solids in water; and an
+// entrainment run writes its bed change (basechange) consistent with the erodible layer left.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -121,4 +122,31 @@ TEST_F(RheologyKeys, BadCombinationsAreRefused) {
   EXPECT_NO_THROW(loadScene(writeRun("Initial Solid Density=300\n")));
   expectInputError([&] { loadScene(writeRun("Initial Solid Density=300\nInclude Initial Water=1\nInitial Fluid Height=0.1\n")); },
                    {"case.run", "Initial Solid Density", "column 3", "Fluid Density"});
+}
+
+TEST_F(RheologyKeys, EntrainmentRunWritesBedChange) {
+  // The block slides over a 0.5 m erodible layer: what the bed lost (basechange < 0) is what the
+  // layer lost, cell by cell, and the run's volume balance counts the entrained volume as a source.
+  const std::string run = writeRun("Include Entrainment=1\nErodible Depth=0.5\nEntrainment Growth Rate=0.02\n"
+                                   "Bed Friction Equals IFA=0\nBed Friction Angle=0.2\n");
+  const talus::sim::Scene scene = loadScene(run);
+  ASSERT_TRUE(scene.settings.entrainment.enabled);
+  talus::sim::Simulation sim(scene, *cfg_, path("out"), talus::sim::OutputMode::Overwrite);
+  const talus::sim::RunSummary s = sim.run({});
+  const Raster change = talus::io::readRaster(path("out/basechange.tif"));
+  const Raster left = talus::io::readRaster(path("out/erodiblefinal.tif"));
+  double eroded = 0, worst = 0;
+  for (std::size_t k = 0; k < change.values.size(); ++k) {
+    eroded -= change.values[k] * kDx * kDx;
+    // float32 maps: 0.5 m to ~3e-8.
+    worst = std::max(worst, std::fabs(change.values[k] + (0.5 - left.values[k])));
+  }
+  std::printf("[ entrainment run ] entrained %.4f m^3 (maps %.4f), balance error %.2e\n", s.totalEntrained, eroded,
+              s.volumeBalanceError);
+  EXPECT_GT(s.totalEntrained, 0.1);
+  EXPECT_NEAR(eroded, s.totalEntrained, 1e-6 * (1 + s.totalEntrained));
+  EXPECT_LT(worst, 1e-7);
+  EXPECT_LT(std::fabs(s.volumeBalanceError), 1e-12);
+  expectInputError([&] { loadScene(writeRun("Include Entrainment=1\nErodible Depth=0.5\nUse Material Point Method=1\n")); },
+                   {"case.run", "Include Entrainment", "Material Point Method"});
 }

@@ -32,9 +32,12 @@ multiplied by cos(theta) of the DEM, AvaFrame's pft/FT are slope-normal already)
                   centroid of the union of all runs' affected areas (one direction per case)
   Jaccard         |A_avaframe & A_talus| / |A_avaframe | A_talus| of the affected areas, per Talus run
   along-bed speed Talus' vsmax is the horizontal speed sqrt(u^2 + v^2), com1DFA's pfv the speed along
-                  the surface; vsmax / cos(theta) (motion in the fall line, an upper bound of
-                  s |u| = sqrt(1 + (e.grad b)^2) |u|) is given beside com1DFA's pfv (comparison.json:
-                  peak_speed_bed_ms, p99_speed_bed_ms)
+                  the surface. Talus writes no velocity direction, so its along-bed speed
+                  s |u| = sqrt(1 + (e.grad b)^2) |u| is estimated with e = the direction the front
+                  moved, grad(tarrival) / |grad(tarrival)| (central differences of the arrival-time
+                  map; fall line where that is undefined), given beside com1DFA's pfv (comparison.json:
+                  peak_speed_bed_ms, p99_speed_bed_ms; the fall-line bound vsmax / cos(theta) as
+                  peak_speed_fallline_ms)
   path runout     with --paths DIR (DIR/<case>/path_aimec.shp, AvaFrame's AIMEC path line): every
                   affected cell is projected onto the nearest point of the line; runout = the largest
                   arc length s of an affected cell minus s of the release's highest cell (path
@@ -142,6 +145,18 @@ def prep(args):
                       "release_cells": int((rel > 0).sum())}))
 
 
+def front_stretch(dem, tarr, cell):
+    """s = sqrt(1 + (e.grad b)^2) with e the direction of grad(tarrival) (the front's direction of
+    travel); the fall-line value sqrt(1 + |grad b|^2) where the arrival-time gradient is undefined."""
+    z = np.where(np.isnan(dem), np.nanmean(dem), dem)
+    by, bx = np.gradient(z, cell)
+    ty, tx = np.gradient(tarr, cell)  # NaN next to cells never reached
+    n = np.hypot(tx, ty)
+    ok = np.isfinite(n) & (n > 0)
+    w = np.where(ok, (tx * bx + ty * by) / np.where(ok, n, 1.0), np.hypot(bx, by))
+    return np.sqrt(1.0 + w * w)
+
+
 def path_coords(path_shp, x, y):
     """Arc length s of the nearest point of the polyline in path_shp for each (x, y)."""
     import shapefile
@@ -192,6 +207,8 @@ def metrics(peak, final, speed, dem, rel, cell, tr, direction=None, spath=None, 
     if speed_bed is not None:
         res["peak_speed_bed_ms"] = float(np.nanmax(np.where(aff, speed_bed, np.nan)))
         res["p99_speed_bed_ms"] = float(np.nanpercentile(speed_bed[aff], 99))
+        ib = np.unravel_index(np.nanargmax(np.where(aff, speed_bed, np.nan)), aff.shape)
+        res["peak_speed_bed_at"] = {"row": int(ib[0]), "col": int(ib[1]), "z": float(dem[ib])}
     if spath is not None:
         s_path, s_len = spath
         s_top = s_path[itop]
@@ -251,7 +268,7 @@ def table(args):
             ft = on_grid(read(first(str(pk / "*_FT.tif")))[0], dem.shape)
             ts = sorted(glob.glob(str(pk / "timeSteps" / "*_FT_t*.tif")))
             tfin = float(ts[-1].rsplit("_t", 1)[1][:-4]) if ts else float("nan")
-            runs["AvaFrame com1DFA"] = (pft, ft, pfv, tfin, info["wall_s"], pfv)
+            runs["AvaFrame com1DFA"] = (pft, ft, pfv, tfin, info["wall_s"], pfv, pfv)
         # Talus: out (defaults) and out_<label> (variants of terrain_avaframe.sh's TALUS_SET)
         for tdir in sorted((work / "talus" / case).glob("out*")):
             if not (tdir / "summary.json").exists():
@@ -263,7 +280,8 @@ def table(args):
             tsim = s.get("simulated_s", s.get("simulated_seconds", s.get("end_time_s", float("nan"))))
             wall = s.get("wall_s", s.get("wall_time_s", float("nan")))
             label = tdir.name[4:]
-            runs["Talus" + (" " + label if label else "") + " (" + str(s.get("status", "?")) + ")"] = (hs, hf, vs, tsim, wall, vs / cth)
+            runs["Talus" + (" " + label if label else "") + " (" + str(s.get("status", "?")) + ")"] = (
+                hs, hf, vs, tsim, wall, vs * front_stretch(dem, read(tdir / "tarrival.tif")[0], cell), vs / cth)
         # common direction: release centroid -> centroid of the union of all runs' affected areas
         masks = {k: np.nan_to_num(v[0], nan=0.0) > THRESH for k, v in runs.items()}
         if not masks:
@@ -278,8 +296,9 @@ def table(args):
         if args.paths and (pathlib.Path(args.paths) / case / "path_aimec.shp").exists():
             sp, _, slen = path_coords(pathlib.Path(args.paths) / case / "path_aimec.shp", x, y)
             spath = (sp, slen)
-        for name, (pk_, fin, spd, tsim, wall, spd_bed) in runs.items():
+        for name, (pk_, fin, spd, tsim, wall, spd_bed, spd_fall) in runs.items():
             m, aff, _ = metrics(pk_, fin, spd, dem, rel, cell, tr, direction, spath, spd_bed)
+            m["peak_speed_fallline_ms"] = float(np.nanmax(np.where(aff, spd_fall, np.nan)))
             m.update(sim_time_s=tsim, wall_s=wall)
             raw[case][name] = m
             lines.append(f"| {case} | {name} | {tsim:.1f} | {wall:.1f} | {m['peak_thickness_m']:.2f} | "
@@ -301,7 +320,7 @@ def table(args):
         lines.extend(jac)
     if bed:
         lines.append("")
-        lines.append("| case | code | peak / p99 along-bed speed, affected cells [m/s] (com1DFA: pfv; Talus: vsmax / cos theta) | runout along the AIMEC path from the release top [m] |")
+        lines.append("| case | code | peak / p99 along-bed speed, affected cells [m/s] (com1DFA: pfv; Talus: vsmax * s in the front's direction) | runout along the AIMEC path from the release top [m] |")
         lines.append("|---|---|---|---|")
         lines.extend(bed)
     txt = "\n".join(lines) + "\n"
