@@ -8,6 +8,7 @@
 // cell: two fused stages, friction, maxima and diagnostics, every field read or written once per
 // kernel), so it is a lower bound of the traffic the device really served.
 #include "bench_args.hpp"
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -105,12 +106,27 @@ void benchTwoPhase(const std::string& device, compute::Precision prec, int size,
     flow::DragLaw drag;
     bool virtualMass;
     bool viscous = false;
+    flow::Rheology rheology = flow::Rheology::Coulomb;
+    std::array<double, 4> rheo{};
+    bool entrainment = false;
   };
+  const double kTan21 = 0.3839, kTan31 = 0.5938;
   const Variant variants[] = {{"drag off", flow::DragLaw::Off, false},
                               {"linear drag", flow::DragLaw::Linear, false},
                               {"linear drag + virtual mass", flow::DragLaw::Linear, true},
                               {"quadratic drag + virtual mass", flow::DragLaw::Quadratic, true},
-                              {"quadratic + vm + viscous P.30", flow::DragLaw::Quadratic, true, true}};
+                              {"quadratic + vm + viscous P.30", flow::DragLaw::Quadratic, true, true},
+                              // The basal laws (kernels/flow/basal_rheology.cl) and entrainment, drag off.
+                              {"drag off, voellmy", flow::DragLaw::Off, false, false, flow::Rheology::Voellmy,
+                               {0.155, 9.81 / 4000}},
+                              {"drag off, mu(I)", flow::DragLaw::Off, false, false, flow::Rheology::MuI,
+                               {kTan21, kTan31, 0.136, 6.5e-4}},
+                              {"drag off, bingham", flow::DragLaw::Off, false, false, flow::Rheology::HerschelBulkley,
+                               {1000, 100, 1, 0}},
+                              {"drag off, herschel-bulkley n 1/3", flow::DragLaw::Off, false, false,
+                               flow::Rheology::HerschelBulkley, {1000, 100, 1.0 / 3.0, 0}},
+                              {"drag off, coulomb + entrainment", flow::DragLaw::Off, false, false,
+                               flow::Rheology::Coulomb, {}, true}};
   for (const Variant& v : variants) {
     flow::FlowSettings settings;
     settings.edge = flow::Boundary::Wall;
@@ -121,11 +137,17 @@ void benchTwoPhase(const std::string& device, compute::Precision prec, int size,
       settings.debris.reynolds = 15000;
       settings.debris.reynoldsInterfacial = 30;
     }
+    settings.debris.rheology = v.rheology;
+    settings.debris.rheologyParams = v.rheo;
+    settings.entrainment.enabled = v.entrainment;
+    settings.entrainment.growthRate = 0.01;
+    flow::FlowInput input = in;
+    if (v.entrainment) input.erodible.assign(g.cells(), 1.0);
     flow::FlowSolver solver(*ctx, g, settings);
-    solver.setInput(in);
+    solver.setInput(input);
     const double seconds = timeSteps(*ctx, solver, steps);
     const double rate = static_cast<double>(g.cells()) * steps / seconds;
-    std::printf("two-phase %4dx%-4d %-6s %-30s %3d steps  %8.3f s  %10.4g cell-updates/s\n", size, size,
+    std::printf("two-phase %4dx%-4d %-6s %-34s %3d steps  %8.3f s  %10.4g cell-updates/s\n", size, size,
                 compute::precisionName(prec), v.name, steps, seconds, rate);
   }
   std::printf("\n");
