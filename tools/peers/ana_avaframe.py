@@ -288,7 +288,7 @@ def evaluate(test, p, work):
                                                flagAvaDir=True, comModule="com1DFA")
         i = int(np.argmin(np.abs(np.asarray(times) - p["tsave"])))
         f = fields[i]
-        assert f["FT"].shape == ha.shape and abs(fh["xllcenter"] - p["x0"]) < 1e-6, "com1DFA remeshed"
+        assert f["FT"].shape == (p["ny"], p["nx"]) and abs(fh["xllcenter"] - p["x0"]) < 1e-6, "com1DFA remeshed"
         ha, ua, mask = analytic(test, p, work, header, float(times[i]))
         h = f["FT"]
         u = np.abs(f["Vx"]) if test == "dambreak" else np.hypot(f["Vx"], f["Vy"])
