@@ -333,7 +333,7 @@ def main():
         (work / a.test / "errors.json").write_text(json.dumps(res, indent=2))
         print(json.dumps(res, indent=2))
         return
-    lines = ["| test | code | time [s] | L1 rel. h | L1 rel. h·|u| | L2 rel. h | mass in window / analytic | wall [s] |",
+    lines = ["| test | code | time [s] | L1 rel. h | L1 rel. h u (horizontal speed) | L2 rel. h | mass in window / analytic | wall [s] |",
              "|---|---|---|---|---|---|---|---|"]
     for test in sorted(TESTS):
         f = work / test / "errors.json"
