@@ -281,7 +281,8 @@ def table(args):
             wall = s.get("wall_s", s.get("wall_time_s", float("nan")))
             label = tdir.name[4:]
             runs["Talus" + (" " + label if label else "") + " (" + str(s.get("status", "?")) + ")"] = (
-                hs, hf, vs, tsim, wall, vs * front_stretch(dem, read(tdir / "tarrival.tif")[0], cell), vs / cth)
+                hs, hf, vs, tsim, wall, vs * front_stretch(dem, read(tdir / "tarrival.tif")[0], cell)
+                if (tdir / "tarrival.tif").exists() else vs / cth, vs / cth)
         # common direction: release centroid -> centroid of the union of all runs' affected areas
         masks = {k: np.nan_to_num(v[0], nan=0.0) > THRESH for k, v in runs.items()}
         if not masks:
