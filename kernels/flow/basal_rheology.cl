@@ -47,7 +47,7 @@ inline real coulomb_factor(BasalColumn c, real qs, real ds) {
 /// The turbulent part, horizontal and per unit density, is (g / xi) |U|^2 / (s cos(theta)) = c q^2
 /// with c = (g / xi) s / (h^2 cos(theta)); with r = q* - ds mu n_g h_st the implicit step
 /// q + ds c q^2 = r has the root q = 2 r / (1 + sqrt(1 + 4 ds c r)) (no cancellation). The steady
-/// uniform state on a plane is |U|^2 = xi H (sin(theta) - mu cos(theta)). rheo = {mu, g / xi [1/m]}.
+/// uniform state on a plane is |U|^2 = xi H (sin(theta) - mu cos(theta)). rheo = {mu, g / xi} (g / xi dimensionless).
 inline real voellmy_factor(__constant const DebrisParams* dp, BasalColumn c, real qs, real ds) {
   const real r = qs - ds * dp->rheo[0] * c.n_g * c.h_st;
   if (r <= (real)0) return (real)0;
