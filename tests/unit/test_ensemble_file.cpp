@@ -28,6 +28,13 @@ fs::path baseFolder() {
   return d;
 }
 
+/// Removes the folder once all tests of the program have run.
+class RemoveBaseFolder : public ::testing::Environment {
+ public:
+  void TearDown() override { fs::remove_all(baseFolder()); }
+};
+const ::testing::Environment* const kCleanUp = ::testing::AddGlobalTestEnvironment(new RemoveBaseFolder);
+
 EnsembleSpec parse(const std::string& body) {
   return parseEnsembleText("[Ensemble]\nRun File=base.run\n" + body, baseFolder().string(), "test.ens");
 }
