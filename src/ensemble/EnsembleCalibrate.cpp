@@ -41,6 +41,7 @@ MemberFit fitMask(const std::vector<unsigned char>& modelled, const std::vector<
   f.fpr = d(f.fp, f.fp + f.tn);
   f.d2pc = std::sqrt((1 - f.tpr) * (1 - f.tpr) + f.fpr * f.fpr);
   f.auroc = (1 + f.tpr - f.fpr) / 2;
+  f.foc = d(f.tp + f.fp, f.tp + f.fn);
   return f;
 }
 
@@ -94,13 +95,13 @@ std::vector<MemberFit> calibrate(const EnsembleSpec& spec, const Raster& dem, co
   std::ostringstream csv;
   csv << "rank,member,name";
   for (const Parameter& p : spec.parameters) csv << "," << p.key;
-  csv << ",tp,fp,fn,tn,jaccard,tpr,fpr,d2pc,auroc,runout_distance_m\n";
+  csv << ",tp,fp,fn,tn,jaccard,tpr,fpr,d2pc,auroc,foc,runout_distance_m\n";
   for (std::size_t r = 0; r < fits.size(); ++r) {
     const MemberFit& f = fits[r];
     csv << r + 1 << "," << f.member << "," << memberName(f.member);
     for (double v : memberValues(spec, f.member)) csv << "," << num(v, 17);
     csv << "," << f.tp << "," << f.fp << "," << f.fn << "," << f.tn << "," << num(f.jaccard) << "," << num(f.tpr)
-        << "," << num(f.fpr) << "," << num(f.d2pc) << "," << num(f.auroc) << ","
+        << "," << num(f.fpr) << "," << num(f.d2pc) << "," << num(f.auroc) << "," << num(f.foc) << ","
         << (f.hasDistance ? num(f.runoutDistanceM) : "") << "\n";
   }
   writeFileAtomically(dir + "/calibration.csv", csv.str());
@@ -115,7 +116,8 @@ std::vector<MemberFit> calibrate(const EnsembleSpec& spec, const Raster& dem, co
   js << "},\n";
   if (haveMap)
     js << "  \"jaccard\": " << num(best.jaccard) << ",\n  \"tpr\": " << num(best.tpr) << ",\n  \"fpr\": "
-       << num(best.fpr) << ",\n  \"d2pc\": " << num(best.d2pc) << ",\n  \"auroc\": " << num(best.auroc) << ",\n";
+       << num(best.fpr) << ",\n  \"d2pc\": " << num(best.d2pc) << ",\n  \"auroc\": " << num(best.auroc)
+       << ",\n  \"foc\": " << num(best.foc) << ",\n";
   js << "  \"runout_distance_m\": " << (best.hasDistance ? num(best.runoutDistanceM) : "null") << "\n}\n";
   writeFileAtomically(dir + "/calibration.json", js.str());
 

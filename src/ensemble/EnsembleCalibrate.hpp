@@ -8,6 +8,7 @@
 //   TPR = TP / (TP + FN), FPR = FP / (FP + TN)        (the ROC point, Fawcett 2006)
 //   D2PC = sqrt((1 - TPR)^2 + FPR^2)                  distance to perfect classification, 0 = perfect
 //   AUROC = (1 + TPR - FPR) / 2                       area under the ROC curve of one binary map
+//   FoC = (TP + FP) / (TP + FN)                        factor of conservativeness: > 1 over-, < 1 under-predicts
 //   runout distance: from the member's runout point to the observed one [m]
 #pragma once
 #include <string>
@@ -24,7 +25,7 @@ namespace talus::ensemble {
 struct MemberFit {
   long long member = 0;
   long long tp = 0, fp = 0, fn = 0, tn = 0;
-  double jaccard = 0, tpr = 0, fpr = 0, d2pc = 0, auroc = 0;
+  double jaccard = 0, tpr = 0, fpr = 0, d2pc = 0, auroc = 0, foc = 0;
   bool hasDistance = false;
   double runoutDistanceM = 0;  ///< modelled to observed runout point [m]
 };

@@ -139,7 +139,7 @@ TEST_F(EnsembleRunTest, WedgeCalibrationRanksTheMemberThatMatches) {
   std::ifstream csv(spec_.outputDir + "/merged/calibration.csv");
   std::string line;
   std::getline(csv, line);
-  EXPECT_EQ(line, "rank,member,name,Initial Fluid Height,tp,fp,fn,tn,jaccard,tpr,fpr,d2pc,auroc,runout_distance_m");
+  EXPECT_EQ(line, "rank,member,name,Initial Fluid Height,tp,fp,fn,tn,jaccard,tpr,fpr,d2pc,auroc,foc,runout_distance_m");
   std::map<int, std::vector<std::string>> byMember;
   std::vector<int> order;
   while (std::getline(csv, line)) {
@@ -160,12 +160,14 @@ TEST_F(EnsembleRunTest, WedgeCalibrationRanksTheMemberThatMatches) {
     EXPECT_EQ(std::stoll(f[7]), tn[m]) << m;
     EXPECT_NEAR(std::stod(f[8]), j[m], 1e-9) << m;  // 10 significant digits written
   }
-  EXPECT_NEAR(std::stod(byMember[3][11]), 1.0 / 3, 1e-9);  // D2PC of s = 4
+  EXPECT_NEAR(std::stod(byMember[3][11]), 1.0 / 3, 1e-9);      // D2PC of s = 4
+  EXPECT_NEAR(std::stod(byMember[3][13]), 108.0 / 102, 1e-9);  // FoC of s = 4: over-predicts
+  EXPECT_NEAR(std::stod(byMember[0][13]), 60.0 / 102, 1e-9);   // FoC of s = 1: under-predicts
   // Runout points: the highest release cell is column 0 (row 0); the farthest affected cell is
   // (i_max, 5), so the distance to the observed point (16, 5) is 2 m x (16 - i_max).
-  EXPECT_NEAR(std::stod(byMember[2][13]), 0.0, 1e-9);
-  EXPECT_NEAR(std::stod(byMember[0][13]), 14.0, 1e-9);
-  EXPECT_NEAR(std::stod(byMember[3][13]), 2.0, 1e-9);
+  EXPECT_NEAR(std::stod(byMember[2][14]), 0.0, 1e-9);
+  EXPECT_NEAR(std::stod(byMember[0][14]), 14.0, 1e-9);
+  EXPECT_NEAR(std::stod(byMember[3][14]), 2.0, 1e-9);
   // Agreement map of the best member (s = 3): 3 (both) on i <= 16, 0 (neither) beyond.
   const Raster a = merged("agreement");
   for (int jy = 0; jy < a.grid.ny; ++jy)
@@ -191,6 +193,7 @@ TEST(EnsembleCalibrateMask, ConfusionCountsByHand) {
   EXPECT_DOUBLE_EQ(f.fpr, 0.5);
   EXPECT_DOUBLE_EQ(f.d2pc, std::sqrt(0.5));
   EXPECT_DOUBLE_EQ(f.auroc, 0.5);
+  EXPECT_DOUBLE_EQ(f.foc, 1.0);
   EXPECT_EQ(agreementMap(m, o, d), (std::vector<unsigned char>{3, 1, 2, 0, 255}));
 }
 
