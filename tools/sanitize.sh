@@ -28,8 +28,11 @@ export POCL_KERNEL_CACHE="${POCL_KERNEL_CACHE:-1}"
 start=$(date +%s)
 # -O1 with line tables only (-g1): line numbers in the sanitizer reports at a fraction of the
 # compile time of -O2 -g; NDEBUG as in the normal (Release) build.
+# Without MPI: Open MPI's components are dlopen'ed and unloaded at MPI_Finalize, so LeakSanitizer
+# reports their allocations under "<unknown module>", which no suppression can name. The ensemble
+# code is still sanitized serially; its MPI test runs in the normal build (docs/ensembles.md).
 cmake -S "$root" -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DTALUS_SANITIZE=ON \
+  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DTALUS_SANITIZE=ON -DCMAKE_DISABLE_FIND_PACKAGE_MPI=ON \
   -DTALUS_BUILD_TESTS=ON -DTALUS_BUILD_BENCH=OFF -DTALUS_BUILD_GUI=OFF >/dev/null
 cmake --build "$build_dir" -j "$(nproc)"
 built=$(date +%s)

@@ -20,6 +20,8 @@ packages=(
   # fuzzing (tools/fuzz.sh): clang with libFuzzer and the sanitizer runtimes; llvm-symbolizer
   # (llvm-14) for readable sanitizer reports
   clang-14 libclang-rt-14-dev llvm-14
+  # ensembles across ranks (talus ensemble under mpirun; optional, docs/ensembles.md)
+  openmpi-bin libopenmpi-dev
 )
 
 missing=()

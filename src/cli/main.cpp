@@ -2,6 +2,7 @@
 //   talus run SCENE.run [--out DIR] [--device SEL] [--precision float|double] [--set "Key=Value"]...
 //             [--overwrite] [--quiet]
 //   talus run --resume DIR [--device SEL] [--set "Key=Value"]... [--quiet]
+//   talus ensemble FILE [--members A-B | --merge | --list | --slurm] [--device SEL] [--quiet]
 //   talus devices
 //   talus keys [--markdown]
 //   talus convert-runfile OPENLISEM.run TALUS.run
@@ -22,6 +23,7 @@
 #include "compute/Device.hpp"
 #include "core/Error.hpp"
 #include "core/FileWrite.hpp"
+#include "ensemble/EnsembleCommand.hpp"
 #include "io/MapRender.hpp"
 #include "io/RunConfig.hpp"
 #include "io/RunFileConvert.hpp"
@@ -36,6 +38,7 @@ void usage(std::FILE* f) {
                "usage: talus run SCENE.run [--out DIR] [--device SEL] [--precision float|double]\n"
                "                 [--set \"Key=Value\"]... [--overwrite] [--quiet]\n"
                "       talus run --resume DIR [--device SEL] [--set \"Key=Value\"]... [--quiet]\n"
+               "%s"
                "       talus devices\n"
                "       talus keys [--markdown]\n"
                "       talus convert-runfile OPENLISEM.run TALUS.run\n"
@@ -44,7 +47,8 @@ void usage(std::FILE* f) {
                "                    [--range LO HI] [--label TEXT] [--threshold T] [--scale PIXELS_PER_CELL]\n"
                "         (renders an output map over the DEM's hillshade with a legend; cells <= T, default 0,\n"
                "          and nodata show only the hillshade)\n"
-               "The device can also be chosen with the environment variable TALUS_DEVICE (index or name).\n");
+               "The device can also be chosen with the environment variable TALUS_DEVICE (index or name).\n",
+               talus::ensemble::ensembleUsage());
 }
 
 int listDevices() {
@@ -175,6 +179,7 @@ int main(int argc, char** argv) {
   const std::string cmd = argv[1];
   try {
     if (cmd == "run") return runScene(argc, argv);
+    if (cmd == "ensemble") return talus::ensemble::ensembleCommand(std::vector<std::string>(argv + 2, argv + argc));
     if (cmd == "devices") return listDevices();
     if (cmd == "render") return talus::io::renderCommand(std::vector<std::string>(argv + 2, argv + argc));
     if (cmd == "convert-runfile") return convertRunFile(argc, argv);
