@@ -7,6 +7,7 @@
 
 #include "compute/ClError.hpp"
 #include "core/Error.hpp"
+#include "core/Text.hpp"
 
 namespace talus::compute {
 namespace {
@@ -26,11 +27,6 @@ std::string platformString(cl_platform_id p, cl_platform_info what) {
   std::string s(size, '\0');
   clGetPlatformInfo(p, what, size, s.data(), nullptr);
   while (!s.empty() && s.back() == '\0') s.pop_back();
-  return s;
-}
-
-std::string lower(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
   return s;
 }
 

@@ -11,6 +11,7 @@
 
 #include "core/Error.hpp"
 #include "io/KeyRegistry.hpp"
+#include "core/Text.hpp"
 
 namespace talus::ensemble {
 namespace fs = std::filesystem;
@@ -20,18 +21,6 @@ namespace {
 /// Ensemble files are a few hundred bytes; this stops `talus ensemble /dev/urandom`.
 constexpr std::uintmax_t kMaxFileBytes = 1u << 20;
 constexpr long long kMaxMembers = 1000000;
-
-std::string trim(const std::string& s) {
-  std::size_t a = 0, b = s.size();
-  while (a < b && std::isspace(static_cast<unsigned char>(s[a]))) ++a;
-  while (b > a && std::isspace(static_cast<unsigned char>(s[b - 1]))) --b;
-  return s.substr(a, b - a);
-}
-
-std::string lower(std::string s) {
-  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return s;
-}
 
 bool toNumber(const std::string& t, double& v) {
   if (t.empty()) return false;

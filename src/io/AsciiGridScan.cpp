@@ -1,4 +1,5 @@
 #include "io/AsciiGridScan.hpp"
+#include "core/Text.hpp"
 
 #include <cctype>
 #include <cstdio>
@@ -44,11 +45,6 @@ class TokenReader {
   char buf_[1 << 16];
   std::size_t pos_ = 0, len_ = 0;
 };
-
-std::string lower(std::string s) {
-  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return s;
-}
 
 /// The header keywords of ESRI ASCII grids that GDAL reads (each is followed by one value).
 bool isHeaderKeyword(const std::string& token) {

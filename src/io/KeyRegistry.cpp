@@ -1,5 +1,6 @@
 // Declared run-file keys: registration, lookup, spelling suggestions and the Markdown key table.
 #include "io/KeyRegistry.hpp"
+#include "core/Text.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -13,11 +14,6 @@ namespace talus::io {
 namespace {
 
 /// Lowercase copy of an ASCII string.
-std::string lower(std::string s) {
-  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return s;
-}
-
 /// Levenshtein edit distance between two strings (insertions, deletions, substitutions).
 std::size_t editDistance(const std::string& a, const std::string& b) {
   std::vector<std::size_t> row(b.size() + 1);

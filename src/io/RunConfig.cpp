@@ -19,6 +19,7 @@
 
 #include "core/Error.hpp"
 #include "io/LisemValues.hpp"
+#include "core/Text.hpp"
 
 namespace talus::io {
 
@@ -34,18 +35,6 @@ constexpr long kRankDefault = LONG_MAX;          // then missing keys and rules 
 constexpr std::uintmax_t kMaxRunFileBytes = 4u << 20;
 /// User text longer than this is cut in messages (an 8 MiB key must not become an 8 MiB message).
 constexpr std::size_t kMaxShown = 120;
-
-std::string trim(const std::string& s) {
-  std::size_t a = 0, b = s.size();
-  while (a < b && std::isspace(static_cast<unsigned char>(s[a]))) ++a;
-  while (b > a && std::isspace(static_cast<unsigned char>(s[b - 1]))) --b;
-  return s.substr(a, b - a);
-}
-
-std::string lower(std::string s) {
-  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return s;
-}
 
 /// Outcome of reading a number from text.
 enum class Number { Ok, NotANumber, NotFinite };
