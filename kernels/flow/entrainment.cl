@@ -22,7 +22,7 @@
 __kernel void debris_entrain(__constant const FlowParams* p, __constant const DebrisParams* dp,
                              __global const uchar* mask, __global const int* tile_list, __global const real* slope,
                              __global const real* qfx, __global const real* qfy, __global real* S, __global real* b,
-                             __global real* erodible, __global real* bed_change, __global real* taken,
+                             __global real* erodible, __global real* bed_change, __global int* eroded,
                              const real growth, const real dt) {
   const int2 c = tile_cell(p, tile_list);
   const int i = c.x, j = c.y;
@@ -47,5 +47,5 @@ __kernel void debris_entrain(__constant const FlowParams* p, __constant const De
   b[k] -= dh;
   erodible[k] = e - dh;
   bed_change[k] -= dh;
-  taken[k] = dh;
+  *eroded = 1;  // every writer stores the same value
 }

@@ -289,10 +289,7 @@ void FlowSolver::computeDiagnostics() {
   } else {
     diag_ = {};
   }
-  if (settings_.entrainment.enabled) {
-    diag_.erodible = reducer_.sum(erodible_, grid_.cells()) * grid_.dx * grid_.dx;
-    diag_.entrained = entrainedStep_;
-  }
+  if (settings_.entrainment.enabled) diag_.erodible = erodibleVolume_;
   // Next step's active tiles: the wet tiles and their neighbours, as an ascending list.
   compact_.bind(params_, tileWet_, tileActive_, tileList_, tileCount_);
   compact_.launch({256}, {256});
@@ -334,7 +331,7 @@ void FlowSolver::restoreState(const std::vector<char>& bytes, double time) {
     at += f->bytes();
   }
   time_ = time;
-  entrainedStep_ = 0;
+  if (settings_.entrainment.enabled) erodibleVolume_ = reducer_.sum(erodible_, grid_.cells()) * grid_.dx * grid_.dx;
   // Diagnostics and the active tiles follow from the state alone: recompute them over every tile.
   std::vector<int> all(static_cast<std::size_t>(tilesX_) * tilesY_);
   std::iota(all.begin(), all.end(), 0);

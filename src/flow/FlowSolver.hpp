@@ -56,7 +56,6 @@ struct FlowDiagnostics {
   double rain = 0;             ///< rain volume added in the last step [m^3] (docs/sources.md)
   double infiltrated = 0;      ///< volume infiltrated in the last step [m^3]
   double erodible = 0;         ///< entrainment: erodible bed volume left [m^3]
-  double entrained = 0;        ///< entrainment: volume taken up in the last step [m^3]
 };
 
 /// Running maxima of the two-phase model (spec §8).
@@ -179,8 +178,8 @@ class FlowSolver {
   // Entrainment (FlowSolverEntrainment.cpp).
   void buildEntrainment();
   void setEntrainmentInput(const FlowInput& in);
-  /// Takes up bed material after the step's stages, then refreshes the bed's slope fields; returns
-  /// nothing, the volumes go to diag_ after the diagnostics.
+  /// Takes up bed material after the step's stages, then refreshes the bed's slope fields where
+  /// something was taken; the erodible volume left goes to diag_ with the diagnostics.
   void enqueueEntrainment(double dt);
   void enqueueBedGeometry();
 
@@ -214,10 +213,11 @@ class FlowSolver {
   compute::RealBuffer particleBed_, bedImpulse_;
   compute::Buffer<uint8_t> lock0_, lock1_;
   compute::Kernel debrisStage_, debrisTrack_, debrisDiagnostics_;
-  // Entrainment: erodible depth left, bed change, depth taken in the last step (per cell).
-  compute::RealBuffer erodible_, bedChange_, entrained_;
+  // Entrainment: erodible depth left and bed change (per cell), the erodible volume left [m^3].
+  compute::RealBuffer erodible_, bedChange_;
+  compute::Buffer<int> erodedFlag_;  ///< set by the entrainment kernel where it took anything
   compute::Kernel entrain_, bedSlopeFields_, bedCurvatureFields_;
-  double entrainedStep_ = 0;
+  double erodibleVolume_ = 0;
   compute::Kernel stage_, friction_, track_, diagnostics_, compact_, sources_;
   /// Global range covering the active tiles: one work-group of kTile x kTile per tile.
   compute::Range tileRange() const;

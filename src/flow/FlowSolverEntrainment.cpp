@@ -25,7 +25,7 @@ void FlowSolver::buildEntrainment() {
     throw InputError("entrainment growth rate must be >= 0, not " + std::to_string(settings_.entrainment.growthRate));
   erodible_ = compute::RealBuffer(ctx_, n, "erodible depth");
   bedChange_ = compute::RealBuffer(ctx_, n, "bed change");
-  entrained_ = compute::RealBuffer(ctx_, n, "entrained depth");
+  erodedFlag_ = compute::Buffer<int>(ctx_, 1, "bed eroded flag");
   const std::string opts = "-DTILE=" + std::to_string(kTile) +
                            " -DMANNING_ALONG_BED=" + (settings_.slopeCorrection ? "1" : "0") +
                            " -DSLOPE_CORRECTION=" + (settings_.slopeCorrection ? "1" : "0") +
@@ -48,17 +48,18 @@ void FlowSolver::setEntrainmentInput(const FlowInput& in) {
   }
   erodible_.upload(e);
   bedChange_.fill(0.0);
-  entrained_.fill(0.0);
-  entrainedStep_ = 0;
+  erodibleVolume_ = reducer_.sum(erodible_, n) * grid_.dx * grid_.dx;
 }
 
 void FlowSolver::enqueueEntrainment(double dt) {
-  entrained_.fill(0.0);  // the kernel writes the active tiles' cells only
+  erodedFlag_.fill(0);
   entrain_.bind(params_, debrisParams_, mask_, tileList_, bedSlope_, qx_, qy_, solid0_, bed_, erodible_, bedChange_,
-                entrained_, compute::RealArg{settings_.entrainment.growthRate}, compute::RealArg{dt});
+                erodedFlag_, compute::RealArg{settings_.entrainment.growthRate}, compute::RealArg{dt});
   entrain_.launch(tileRange(), kLocal2D, "debris_entrain");
-  entrainedStep_ = reducer_.sum(entrained_, grid_.cells()) * grid_.dx * grid_.dx;
-  if (entrainedStep_ > 0) enqueueBedGeometry();
+  // Where nothing was taken (the flow at rest, the layer used up) the bed and its slope fields stay.
+  if (erodedFlag_.read()[0] == 0) return;
+  erodibleVolume_ = reducer_.sum(erodible_, grid_.cells()) * grid_.dx * grid_.dx;
+  enqueueBedGeometry();
 }
 
 void FlowSolver::enqueueBedGeometry() {

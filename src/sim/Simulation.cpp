@@ -23,6 +23,32 @@ constexpr const char* kCsvHeader =
 double totalVolume(const flow::FlowDiagnostics& d) { return d.volume + d.volumeSolid; }
 double totalOutflow(const flow::FlowDiagnostics& d) { return d.outflow + d.outflowSolid; }
 
+/// The scene as the health check's energy bound must see it: everything that can join the flow
+/// during the run counted as if it were there at the start.
+flow::FlowInput energyBoundInput(const Scene& scene) {
+  flow::FlowInput bound = scene.flow;
+  const double area = scene.dem.grid.dx * scene.dem.grid.dx;
+  // The particles' confined water may be released onto the grid and fall from where they stand.
+  if (scene.particles.enabled)
+    for (std::size_t q = 0; q < scene.particles.seeded.size(); ++q)
+      bound.h[scene.particles.seeded.cell[q]] += scene.particles.seeded.volume[q] / area;
+  // The rain of the whole run can fall over the whole relief and drive fronts as deep as it is.
+  if (!scene.rainfall.empty()) {
+    const double rain = scene.rainfall.depth(scene.startTime, scene.endTime);
+    for (double& h : bound.h) h += rain;
+  }
+  // Entrainment lowers the bed by at most the erodible depth and thickens the flow by as much (the
+  // surface b + h_s stays).
+  if (scene.settings.entrainment.enabled && !scene.flow.erodible.empty()) {
+    if (bound.hs.empty()) bound.hs.assign(bound.bed.size(), 0.0);
+    for (std::size_t k = 0; k < bound.bed.size(); ++k) {
+      bound.bed[k] -= scene.flow.erodible[k];
+      bound.hs[k] += scene.flow.erodible[k];
+    }
+  }
+  return bound;
+}
+
 }  // namespace
 
 Simulation::Simulation(const Scene& scene, const io::RunConfig& config, const std::string& outDir, OutputMode mode)
@@ -33,34 +59,7 @@ Simulation::Simulation(const Scene& scene, const io::RunConfig& config, const st
   solver_ = std::make_unique<flow::FlowSolver>(*ctx_, scene.dem.grid, scene.settings);
   solver_->setInput(scene.flow, scene.startTime);
   solver_->setInfiltration(scene.infiltration);
-  if (scene.particles.enabled && !scene.particles.seeded.x.empty()) {
-    // The particles' material counts for the energy bound too: its confined water may be released
-    // onto the grid and fall from where the particles stand.
-    flow::FlowInput bound = scene.flow;
-    const double area = scene.dem.grid.dx * scene.dem.grid.dx;
-    for (std::size_t q = 0; q < scene.particles.seeded.size(); ++q)
-      bound.h[scene.particles.seeded.cell[q]] += scene.particles.seeded.volume[q] / area;
-    health_ = std::make_unique<HealthCheck>(scene.dem, bound, scene.settings);
-  } else if (!scene.rainfall.empty()) {
-    // The rain of the whole run counts for the energy bound as if it lay on every cell at the
-    // start: it can fall over the whole relief and drive fronts as deep as it is.
-    flow::FlowInput bound = scene.flow;
-    const double rain = scene.rainfall.depth(scene.startTime, scene.endTime);
-    for (double& h : bound.h) h += rain;
-    health_ = std::make_unique<HealthCheck>(scene.dem, bound, scene.settings);
-  } else if (scene.settings.entrainment.enabled && !scene.flow.erodible.empty()) {
-    // Entrainment lowers the bed by at most the erodible depth and thickens the flow by as much:
-    // the bound takes both as if they were there at the start (the surface b + h_s stays).
-    flow::FlowInput bound = scene.flow;
-    if (bound.hs.empty()) bound.hs.assign(bound.bed.size(), 0.0);
-    for (std::size_t k = 0; k < bound.bed.size(); ++k) {
-      bound.bed[k] -= scene.flow.erodible[k];
-      bound.hs[k] += scene.flow.erodible[k];
-    }
-    health_ = std::make_unique<HealthCheck>(scene.dem, bound, scene.settings);
-  } else {
-    health_ = std::make_unique<HealthCheck>(scene.dem, scene.flow, scene.settings);
-  }
+  health_ = std::make_unique<HealthCheck>(scene.dem, energyBoundInput(scene), scene.settings);
   for (uint8_t v : scene.dem.valid) domainCells_ += v;
   initialVolume_ = totalVolume(solver_->diagnostics());
   initialErodible_ = solver_->diagnostics().erodible;
