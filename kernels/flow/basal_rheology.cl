@@ -126,9 +126,18 @@ inline real herschel_bulkley_factor(__constant const DebrisParams* dp, BasalColu
   return fmax(qs - m * tau, (real)0) / qs;
 }
 
+/// The law: fixed at build time in the solver's kernels (-DRHEOLOGY=<id>, FlowSolverDebris.cpp), so a
+/// Coulomb run carries none of the other laws' terms (the column's slope factors are then dead code);
+/// the test kernel (basal_rheology_test.cl) reads it from the parameters.
+#ifdef RHEOLOGY
+#define BASAL_LAW(dp) RHEOLOGY
+#else
+#define BASAL_LAW(dp) ((dp)->rheology)
+#endif
+
 /// The factor q / q* of the cell's law (q* > 0).
 inline real basal_factor(__constant const DebrisParams* dp, BasalColumn c, real qs, real ds) {
-  switch (dp->rheology) {
+  switch (BASAL_LAW(dp)) {
     case RHEOLOGY_VOELLMY: return voellmy_factor(dp, c, qs, ds);
     case RHEOLOGY_MU_I: return mu_i_factor(dp, c, qs, ds);
     case RHEOLOGY_HERSCHEL_BULKLEY: return herschel_bulkley_factor(dp, c, qs, ds);

@@ -52,7 +52,9 @@ void FlowSolver::buildDebris() {
                            // The particle bed of the hybrid mode is compiled out in grid mode.
                            " -DDEBRIS_OBSTACLE=" + (settings_.particleBed ? "1" : "0") +
                            // The bed's curvature term is compiled out unless asked for.
-                           " -DDEBRIS_CURVATURE=" + (settings_.curvature && settings_.slopeCorrection ? "1" : "0");
+                           " -DDEBRIS_CURVATURE=" + (settings_.curvature && settings_.slopeCorrection ? "1" : "0") +
+                           // Only the run's basal law is compiled in (kernels/flow/basal_rheology.cl).
+                           " -DRHEOLOGY=" + std::to_string(static_cast<int>(settings_.debris.rheology));
   // Hybrid mode: the particles' bed (H_c, u_c, v_c per cell) and the impulse it takes per step
   // (x, y); one-value placeholders otherwise (the kernel does not read them).
   const std::size_t bedCells = settings_.particleBed ? n : 1;
