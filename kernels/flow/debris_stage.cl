@@ -13,9 +13,10 @@
 //   internal friction angle phi, the solid density rho_s and the grain size d, upwinded.
 // Sources S (implicit, per stage, first order in time): the solids' basal law (basal_rheology.cl:
 //   Coulomb friction tan(delta) (1 - B gamma_eff) g_n h_s by default, or Voellmy, mu(I), Bingham,
-//   Herschel-Bulkley), then drag with virtual mass as an exact, momentum-conserving relaxation of
-//   the phase velocities (held solids stay at rest), then the basal viscous terms and Manning on the
-//   fluid; friction can stop motion but never reverse it.
+//   Herschel-Bulkley) and the drag with virtual mass, solved together as one momentum-conserving
+//   exchange (phase_exchange.cl: water can set a deposit moving, a held deposit passes the drag to
+//   the bed), then the basal viscous terms and Manning on the fluid; friction can stop motion but
+//   never reverse it.
 // Viscous stress of the fluid (P.30, compiled in with -DDEBRIS_VISCOUS=1): face fluxes of
 //   debris_viscous.cl added to the fluid momentum fluxes.
 // Particle bed (hybrid mode, compiled in with -DDEBRIS_OBSTACLE=1; spec §6): the confined phase of the
@@ -35,6 +36,7 @@
 #include "flow/solid_bed.cl"
 #include "flow/manning.cl"
 #include "flow/basal_rheology.cl"
+#include "flow/phase_exchange.cl"
 #ifndef DEBRIS_VISCOUS
 #define DEBRIS_VISCOUS 0
 #endif
@@ -163,38 +165,6 @@ inline real cell_factor(__constant const FlowParams* p, __constant const DebrisP
 #else
   return (real)1;
 #endif
-}
-
-/// Exact relaxation of the phase velocities by drag with virtual mass over ds (momentum-conserving):
-/// dw/dt = -lambda |w|^(j-1) w for the vector w = u_f - u_s (its direction is kept, so the quadratic
-/// law is isotropic), lambda = rho_s H C (1/m_s + 1/m_f) / (1 + m_vm (1/m_s + 1/m_f)),
-/// m_s = rho_s h_s, m_f = rho_f h_f, m_vm = C_vm rho_f h_s, C_vm = (1 + 2 alpha_s) / (2 alpha_f)
-/// (OpenLISEM Hazard P.35 with alpha_u = alpha_f in grid mode). A solid that friction holds
-/// (`held`) cannot be moved by the fluid within the step: the bed takes the reaction, and only the
-/// fluid relaxes towards rest with 1/m_s = 0 in lambda.
-inline void drag_relax(__constant const DebrisParams* dp, Material mat, real hs, real hf, real* qs, real* qf,
-                       real ds, int held) {
-  const real H = hs + hf, as = hs / H, af = hf / H;
-  const real ms = mat.rho_s * hs, mf = dp->rho_f * hf;
-  const real inv = (held ? (real)0 : (real)1 / ms) + (real)1 / mf;
-  const real mvm = dp->virtual_mass ? (real)0.5 * ((real)1 + (real)2 * as) / af * dp->rho_f * hs : (real)0;
-  const real C = drag_coefficient(dp, as, mat.rho_s, mat.d);
-  const real lambda = mat.rho_s * H * C * inv / ((real)1 + mvm * inv);
-  const real usx = qs[0] / hs, usy = qs[1] / hs;
-  const real wx = qf[0] / hf - usx, wy = qf[1] / hf - usy;
-  const real w = sqrt(wx * wx + wy * wy);
-  const real factor = dp->drag_law == DRAG_QUADRATIC ? (real)1 / ((real)1 + lambda * w * ds) : exp(-lambda * ds);
-  if (held) {
-    qf[0] = hf * wx * factor;
-    qf[1] = hf * wy * factor;
-    return;
-  }
-  const real Px = ms * usx + mf * (usx + wx), Py = ms * usy + mf * (usy + wy);
-  const real ux = (Px - mf * wx * factor) / (ms + mf), uy = (Py - mf * wy * factor) / (ms + mf);
-  qs[0] = hs * ux;
-  qs[1] = hs * uy;
-  qf[0] = hf * (ux + wx * factor);
-  qf[1] = hf * (uy + wy * factor);
 }
 
 __kernel void debris_stage(__constant const FlowParams* p, __constant const DebrisParams* dp,
@@ -413,24 +383,23 @@ __kernel void debris_stage(__constant const FlowParams* p, __constant const Debr
   mn.d = hsn > p->h_dry ? Sn[5] / hsn : dp->d_default;
   mn.gamma = hfn > p->h_dry ? dp->rho_f / mn.rho_s : (real)0;
   mn.delta = dp->delta_from_phi ? mn.phi : delta[k];
-  // Coulomb friction first: it decides whether the solids are held; then the drag exchange, in
-  // which held solids stay at rest (the bed takes the reaction).
-  // The bed moves where the solids rest on particles (hybrid mode): friction acts on the velocity
-  // relative to the particles' u_c, and solids carried along are not static.
+  // The basal law and the drag exchange, solved together (phase_exchange.cl): water flowing over
+  // a deposit can set it moving, and a held deposit passes the drag on to the bed.
+  // The bed moves where the solids rest on particles (hybrid mode): the basal law acts on the
+  // velocity relative to the particles' u_c, and solids carried along are not static.
 #if DEBRIS_OBSTACLE
   const real ucx = Hc_k > (real)0 ? pbed[n + k] : (real)0, ucy = Hc_k > (real)0 ? pbed[2 * n + k] : (real)0;
-  const real qs_before[2] = {qs[0], qs[1]};
 #else
   const real ucx = 0, ucy = 0;
 #endif
+  real basal_px = 0, basal_py = 0;  // impulse the bed takes from the solids over ds [kg/(m s)]
   uchar locked = 1;
   if (hsn > p->h_dry) {
-    const real rx = qs[0] - hsn * ucx, ry = qs[1] - hsn * ucy;
-    const real qn = sqrt(rx * rx + ry * ry);
     // The friction of the stage's own state (the thickness its bed force and pressure used): with
     // the new thickness a cell filling within the stage (every front cell) met the friction of its
     // new mass but the bed force of its old one, and Coulomb fronts lagged (docs/two_phase.md).
     // The basal law of the solids (basal_rheology.cl; Coulomb by default).
+    const real rx = qs[0] - hsn * ucx, ry = qs[1] - hsn * ucy;
     BasalColumn col;
     col.h_st = S_st[k];
     col.h = hsn;
@@ -440,17 +409,14 @@ __kernel void debris_stage(__constant const FlowParams* p, __constant const Debr
     col.stretch = along_bed_stretch(rx, ry, fslope[k], fslope[n + k]);
     col.rho = mn.rho_s;
     col.tan_delta = tan(mn.delta);
-    const real f = qn > (real)0 ? basal_factor(dp, col, qn, ds) : (real)0;
-    qs[0] = hsn * ucx + f * rx;
-    qs[1] = hsn * ucy + f * ry;
+    const int coupled = dp->drag_law != DRAG_OFF && hfn > p->h_dry;
+    const int held = phase_exchange(dp, mn.rho_s, mn.d, col, hsn, hfn, qs, qf, ucx, ucy, ds, coupled, &basal_px, &basal_py);
 #if DEBRIS_OBSTACLE
-    locked = f == (real)0 && ucx == (real)0 && ucy == (real)0;
+    locked = held && ucx == (real)0 && ucy == (real)0;
 #else
-    locked = f == (real)0;  // no particle bed: the solids' reference velocity is zero
+    locked = held;  // no particle bed: the solids' reference velocity is zero
 #endif
   }
-  if (dp->drag_law != DRAG_OFF && hsn > p->h_dry && hfn > p->h_dry)
-    drag_relax(dp, mn, hsn, hfn, qs, qf, ds, locked);
 #if DEBRIS_VISCOUS
   if (hfn > p->h_dry) visc_basal(dp, g, hsn, hfn, hsn > p->h_dry ? qs[0] / hsn : (real)0,
                                  hsn > p->h_dry ? qs[1] / hsn : (real)0, qf, ds);
@@ -478,8 +444,8 @@ __kernel void debris_stage(__constant const FlowParams* p, __constant const Debr
     const real wr = w_out / p->dx, wfric = Hc_k > (real)0 ? (first_stage ? (real)0.5 : (real)1) : (real)0;
     const real rho = mn.rho_s;
     const real wwall = first_stage ? (real)0.5 : (real)1;  // the wall reaction reaches the end state as friction does
-    impulse[k] += wr * (dp->rho_f * react_f[0] + react_s[0]) - wfric * rho * (qs[0] - qs_before[0]) + wwall * rho * wall_px;
-    impulse[n + k] += wr * (dp->rho_f * react_f[1] + react_s[1]) - wfric * rho * (qs[1] - qs_before[1]) + wwall * rho * wall_py;
+    impulse[k] += wr * (dp->rho_f * react_f[0] + react_s[0]) + wfric * basal_px + wwall * rho * wall_px;
+    impulse[n + k] += wr * (dp->rho_f * react_f[1] + react_s[1]) + wfric * basal_py + wwall * rho * wall_py;
   }
 #endif
   const real wf = w_out * p->dx;

@@ -3,7 +3,7 @@
 // were transferred to the grid (P2G: thickness H_c, mass M_c, momentum P_c of the cell).
 // In a cell with both, the relative velocity w = u_f - u_c relaxes exactly over dt (linear law:
 // w e^{-lambda dt}; quadratic: w / (1 + lambda |w| dt)) at the rate of the grid model's drag
-// (kernels/flow/debris_stage.cl, drag_relax) with the confined phase in the solids' place:
+// (kernels/flow/phase_exchange.cl, drag_step) with the confined phase in the solids' place:
 // lambda = rho_c H C (1/m_c + 1/m_f) / (1 + m_vm (1/m_c + 1/m_f)), m_c = M_c / dx^2, m_f = rho_f h_f,
 // H = H_c + h_f, C the drag coefficient of alpha_c = H_c / H, rho_c = m_c / H_c and grain size d.
 // The total momentum m_c u_c + m_f u_f of the cell is kept; the fluid's new discharge is written

@@ -238,10 +238,9 @@ TEST(TwoPhase, DragRelaxationConservesMomentum) {
 // depend on the direction of the flow. Same uniform layer as above on a square grid (97 x 97 cells,
 // walls, N = 10 steps, the centre cell bitwise uniform by the same domain-of-dependence argument),
 // with the relative velocity along the diagonal: each component of w must follow the 1D recursion
-// with |w| the vector magnitude, and for the linear law with lambda. EXPECTED TO FAIL for the
-// quadratic law until the solver is fixed: drag_relax (debris_stage.cl) relaxes each component
-// with its own |w_c| (w / (1 + lambda |w_c| ds) per component), which on the diagonal is the rate
-// lambda |w| / sqrt(2): a drag that depends on the orientation of the grid.
+// with |w| the vector magnitude, and for the linear law with lambda (drag_step, phase_exchange.cl;
+// a per-component |w_c| would give the rate lambda |w| / sqrt(2) on the diagonal: a drag that
+// depends on the orientation of the grid).
 TEST(TwoPhase, QuadraticDragIsIsotropic) {
   const int N = 10, n = 8 * N + 17, ic = n / 2;
   const double hs = 0.5, hf = 0.5, grain = 0.01;
@@ -487,13 +486,10 @@ TEST(TwoPhase, SymmetricReleaseStaysSymmetric) {
 // them exactly (q_s set to 0, the cells stay locked and pass no mass). Expected: h_s bitwise
 // unchanged, q_s exactly 0, fluid speeds and surface deviation at round-off (asserted 1e-12 m/s and
 // 1e-12 m; measured 1e-14 m/s and 9e-16 m with the drag off).
-// With the drag on (the default) the same lake does NOT stay at rest: drag_relax (debris_stage.cl)
-// runs before the Coulomb friction, on the solids' trial momentum, i.e. the static force
-// imbalance times dt that friction is about to cancel; the momentum-conserving relaxation hands
-// part of it to the fluid, then friction zeroes only the solids' share. The fluid is driven by
-// forces the bed friction should absorb (measured 0.9-1.7e-2 m/s and 0.7-1.5e-3 m of surface
-// displacement after 300 steps).
-// EXPECTED TO FAIL with the drag on until the solver is fixed.
+// With the drag on (the default) the lake must stay at rest too: the basal law and the drag are
+// solved together (phase_exchange.cl), so the friction impulse that cancels the static imbalance
+// on the held solids enters before the relaxation and none of that imbalance reaches the fluid.
+// (Drag applied before friction handed part of it to the fluid: 0.9-1.7e-2 m/s after 300 steps.)
 TEST(TwoPhase, MixtureAtRestStaysAtRest) {
   const Grid g = Grid::make(40, 40, 2.0);
   for (const fl::DragLaw drag : {fl::DragLaw::Off, fl::DragLaw::Linear})
