@@ -37,8 +37,24 @@ typedef struct {
   real chi;            // vertical shear factor of the fluid velocity (basal viscous term)
   real xi;             // vertical solid-fraction profile factor (basal interfacial term)
   real rheo[4];        // parameters of the basal law (src/flow/Rheology.cpp)
-  real pad0;
+  real packing;        // solid volume fraction phi_p of the saturated skeleton (submergence)
 } DebrisParams;
+
+/// Buoyancy ratio gamma_eff = (rho_f / rho_s) chi of solids h_s under fluid h_f: the skeleton of
+/// packing phi_p holds the pore volume h_s (1 - phi_p) / phi_p, which the fluid fills from the bed
+/// up, so the submerged share of the solids is chi = min(1, h_f phi_p / (h_s (1 - phi_p))) and the
+/// fluid's buoyancy (rho_f g per submerged solid volume, Archimedes) grows continuously from zero
+/// with the fluid, reaching the saturated value of the mixture model (Pudasaini 2012) once the
+/// pores are full. It scales the basal normal stress (1 - B gamma_eff), the lateral pressure
+/// (1 - gamma_eff) and the buoyancy force gamma_eff g_p h_s grad(H) (debris_stage.cl): a partly
+/// saturated layer interpolates linearly in chi between dry and saturated.
+inline real submerged_gamma(__constant const DebrisParams* dp, real rho_s, real hs, real hf) {
+  if (!(hf > (real)0)) return (real)0;
+  const real gamma = dp->rho_f / rho_s;
+  const real pores = hs * ((real)1 - dp->packing);
+  const real wet = hf * dp->packing;
+  return wet >= pores ? gamma : gamma * wet / pores;
+}
 
 /// Solid velocity desingularised in films (Kurganov & Petrova 2007, eq. 2.21, with eps = max(h_dry,
 /// film_h)): u = sqrt(2) h q / sqrt(h^4 + max(h^4, eps^4)). In a solid film of a fraction of a

@@ -141,7 +141,7 @@ inline Material material_of(__constant const FlowParams* p, __constant const Deb
   m.phi = scalar_of(S, n, 3, k, p->h_dry, dp->phi_default);
   m.rho_s = scalar_of(S, n, 4, k, p->h_dry, dp->rho_s_default);
   m.d = scalar_of(S, n, 5, k, p->h_dry, dp->d_default);
-  m.gamma = hf[k] > p->h_dry ? dp->rho_f / m.rho_s : (real)0;
+  m.gamma = hf[k] > p->h_dry ? submerged_gamma(dp, m.rho_s, S[k], hf[k]) : (real)0;
   m.delta = dp->delta_from_phi ? m.phi : delta[k];
   m.c_over_rho = cohesion[k] / m.rho_s;
   return m;
@@ -381,7 +381,7 @@ __kernel void debris_stage(__constant const FlowParams* p, __constant const Debr
   mn.rho_s = hsn > p->h_dry ? Sn[4] / hsn : dp->rho_s_default;
   mn.phi = hsn > p->h_dry ? Sn[3] / hsn : dp->phi_default;
   mn.d = hsn > p->h_dry ? Sn[5] / hsn : dp->d_default;
-  mn.gamma = hfn > p->h_dry ? dp->rho_f / mn.rho_s : (real)0;
+  mn.gamma = hfn > p->h_dry ? submerged_gamma(dp, mn.rho_s, hsn, hfn) : (real)0;
   mn.delta = dp->delta_from_phi ? mn.phi : delta[k];
   // The basal law and the drag exchange, solved together (phase_exchange.cl): water flowing over
   // a deposit can set it moving, and a held deposit passes the drag on to the bed.

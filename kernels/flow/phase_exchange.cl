@@ -62,33 +62,35 @@ inline DragStep drag_step(__constant const DebrisParams* dp, real rho_s, real gr
 /// [kg/(m s)] the bed takes; returns 1 where the basal law holds the solids (factor 0).
 inline int phase_exchange(__constant const DebrisParams* dp, real rho_s, real grain, BasalColumn col, real hs, real hf,
                           real* qs, real* qf, real ucx, real ucy, real ds, int coupled, real* px, real* py) {
-  real ax = qs[0] / hs, ay = qs[1] / hs, ds_law = ds, share = (real)1;
+  // (qax, qay) = h_s A, the solids' momentum after the drag alone: the momentum itself where there
+  // is no drag, so that the law alone is evaluated on the momenta as they are (q -> u_c h + f (q -
+  // u_c h)), with no division and multiplication by h_s to change their round-off.
+  real qax = qs[0], qay = qs[1], ds_law = ds, share = (real)1;
   DragStep d;
   if (coupled) {
     d = drag_step(dp, rho_s, grain, hs, hf, qs, qf, ds);
-    ax = d.ax;
-    ay = d.ay;
+    qax = hs * d.ax;
+    qay = hs * d.ay;
     // c m_s = (m_s + m_f F) / M: the part of the basal impulse the solids keep
     share = (d.ms + d.mf * d.F) / (d.ms + d.mf);
     ds_law = share * ds;
   }
-  // The basal law on the velocity relative to the bed, with the shared step c m_s ds.
-  const real rx = hs * (ax - ucx), ry = hs * (ay - ucy);
+  // The basal law on the momentum relative to the bed, with the shared step c m_s ds.
+  const real rx = qax - hs * ucx, ry = qay - hs * ucy;
   const real qn = sqrt(rx * rx + ry * ry);
   const real f = qn > (real)0 ? basal_factor(dp, col, qn, ds_law) : (real)0;
-  const real usx = ucx + f * (ax - ucx), usy = ucy + f * (ay - ucy);
+  qs[0] = hs * ucx + f * rx;
+  qs[1] = hs * ucy + f * ry;
   // P = (A - u_s) / c = m_s (A - u_s) / (c m_s)
-  const real ms = rho_s * hs;
-  *px = ms * (ax - usx) / share;
-  *py = ms * (ay - usy) / share;
-  qs[0] = hs * usx;
-  qs[1] = hs * usy;
+  *px = rho_s * (qax - qs[0]) / share;
+  *py = rho_s * (qay - qs[1]) / share;
   if (coupled) {
     // w = F (w* + P / m_s); with P = 0 the drag's own end state, bitwise.
     const real wx = *px == (real)0 ? d.wx * d.F : d.F * (d.wx + *px / d.ms);
     const real wy = *py == (real)0 ? d.wy * d.F : d.F * (d.wy + *py / d.ms);
-    qf[0] = hf * (usx + wx);
-    qf[1] = hf * (usy + wy);
+    // the solid velocity u_c + f (A - u_c), = A itself where the bed does not act
+    qf[0] = hf * (ucx + f * (d.ax - ucx) + wx);
+    qf[1] = hf * (ucy + f * (d.ay - ucy) + wy);
   }
   return f == (real)0;
 }

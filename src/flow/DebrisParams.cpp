@@ -27,6 +27,7 @@ void fill(compute::RawBuffer& buf, const DebrisSettings& d) {
   p.invNRA = static_cast<Real>(d.reynoldsInterfacial > 0 ? 1.0 / d.reynoldsInterfacial : 0.0);
   p.chi = static_cast<Real>(d.chi);
   p.xi = static_cast<Real>(d.xi);
+  p.packing = static_cast<Real>(d.packing);
   p.rheology = static_cast<int32_t>(d.rheology);
   for (int c = 0; c < 4; ++c) p.rheo[c] = static_cast<Real>(d.rheologyParams[c]);
   buf.writeBytes(&p, sizeof p);

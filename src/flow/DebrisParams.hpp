@@ -20,7 +20,7 @@ struct DebrisParamsT {
   Real kConst, rhoF, poreB, dragMult, dragM, dragBigM, dragKappa, viscA, viscB, phiDefault, rhoSDefault, dDefault;
   Real filmH, invNR, invNRA, chi, xi;
   Real rheo[4];  // parameters of the basal law (flow/Rheology.hpp)
-  Real pad0;
+  Real packing;  // solid volume fraction of the saturated skeleton
 };
 
 static_assert(offsetof(DebrisParamsT<float>, kConst) == 24 && sizeof(DebrisParamsT<float>) == 112, "DebrisParams<float>");

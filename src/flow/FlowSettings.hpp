@@ -22,6 +22,9 @@ struct DebrisSettings {
   double kConst = 1.0;           ///< earth-pressure coefficient when constant
   double fluidDensity = 1000.0;  ///< rho_f [kg/m^3]
   double poreB = 1.0;            ///< basal pore-pressure factor B (P.39)
+  /// Solid volume fraction of the saturated skeleton: fluid thinner than its pore volume
+  /// h_s (1 - packing) / packing submerges the solids only partly (kernels/flow/debris_closures.cl)
+  double packing = 0.6;
   DragLaw drag = DragLaw::Linear;
   double dragMultiplier = 1.0;
   double dragPExponent = 1.0;    ///< m in P = alpha_s^m

@@ -93,6 +93,9 @@ void addSolidKeys(KeyRegistry& r) {
                 "lateral earth-pressure coefficient: active/passive from phi and delta, or constant")
       << real("Earth Pressure Coefficient", "1", "-", 0.01, 100, "K when Earth Pressure=constant")
       << real("Pore Pressure Factor", "1", "-", 0, 1, "B: share of buoyancy that reduces basal friction")
+      << real("Solid Packing Fraction", "0.6", "-", 0.2, 0.74,
+              "solid volume fraction of the saturated deposit: fluid fills its pores from the bed up, "
+              "and buoyancy grows with the submerged share of the solids")
       << real("Fluid Density", "1000", "kg/m^3", 500, 2000, "density rho_f of the fluid phase")
       << choice("Drag Law", {"off", "linear", "quadratic"}, "linear",
                 "solid-fluid drag of Pudasaini (2012): j = 1 (linear) or j = 2 (quadratic)")

@@ -326,6 +326,7 @@ Scene loadScene(const io::RunConfig& cfg) {
   d.earthPressure = flow::parseEarthPressure(cfg.choice("Earth Pressure"));
   d.kConst = cfg.real("Earth Pressure Coefficient");
   d.poreB = cfg.real("Pore Pressure Factor");
+  d.packing = cfg.real("Solid Packing Fraction");
   d.fluidDensity = cfg.real("Fluid Density");
   d.drag = flow::parseDragLaw(cfg.choice("Drag Law"));
   d.dragMultiplier = cfg.real("Drag coefficient multiplier");
