@@ -9,8 +9,10 @@
 //   -g_n h_s db/dx and the buoyancy -gamma g_p h_s dH/dx; the bed as the solids feel it (terrain-following
 //   gravity with the bed's curvature, the reconstructed bed, the faces between different beds and the
 //   walls they make) is in solid_bed.cl.
-// Passive scalars carried with the solids (conserved as h_s * value): tan of nothing, but the
-//   internal friction angle phi, the solid density rho_s and the grain size d, upwinded.
+// Passive scalars carried with the solids (conserved as h_s * value, upwinded): the internal
+//   friction angle phi, the solid density rho_s, the grain size d and the cohesion c, so a cohesive
+//   release keeps its cohesion where it flows (and loose material stays loose where it flows over a
+//   cohesive release's former footprint).
 // Sources S (implicit, per stage, first order in time): the solids' basal law (basal_rheology.cl:
 //   Coulomb friction tan(delta) (1 - B gamma_eff) g_n h_s by default, or Voellmy, mu(I), Bingham,
 //   Herschel-Bulkley) and the drag with virtual mass, solved together as one momentum-conserving
@@ -51,7 +53,8 @@
 #define DEBRIS_CURVATURE 0
 #endif
 
-#define NSOLID 6  // solid state components: h_s, q_sx, q_sy, h_s phi, h_s rho_s, h_s d
+#define NSOLID 7   // solid state components: h_s, q_sx, q_sy, h_s phi, h_s rho_s, h_s d, h_s c
+#define NSCALAR 4  // the passive scalars among them (from component 3)
 
 /// The bed the grid phases see: the DEM, plus the particles' confined thickness in hybrid mode.
 #if DEBRIS_OBSTACLE
@@ -129,21 +132,25 @@ typedef struct {
   real gamma, phi, delta, rho_s, d, c_over_rho;
 } Material;
 
+/// Value of scalar `c` (0 phi, 1 rho_s, 2 d, 3 c) where there are no solids.
+inline real scalar_default(__constant const DebrisParams* dp, int c) {
+  return c == 0 ? dp->phi_default : c == 1 ? dp->rho_s_default : c == 2 ? dp->d_default : (real)0;
+}
+
 inline real scalar_of(__global const real* S, int n, int comp, int k, real h_dry, real fallback) {
   const real hs = S[k];
   return hs > h_dry ? S[comp * n + k] / hs : fallback;
 }
 
 inline Material material_of(__constant const FlowParams* p, __constant const DebrisParams* dp, __global const real* S,
-                            __global const real* hf, __global const real* delta, __global const real* cohesion, int k,
-                            int n) {
+                            __global const real* hf, __global const real* delta, int k, int n) {
   Material m;
   m.phi = scalar_of(S, n, 3, k, p->h_dry, dp->phi_default);
   m.rho_s = scalar_of(S, n, 4, k, p->h_dry, dp->rho_s_default);
   m.d = scalar_of(S, n, 5, k, p->h_dry, dp->d_default);
   m.gamma = hf[k] > p->h_dry ? submerged_gamma(dp, m.rho_s, S[k], hf[k]) : (real)0;
   m.delta = dp->delta_from_phi ? m.phi : delta[k];
-  m.c_over_rho = cohesion[k] / m.rho_s;
+  m.c_over_rho = scalar_of(S, n, 6, k, p->h_dry, (real)0) / m.rho_s;
   return m;
 }
 
@@ -171,7 +178,7 @@ __kernel void debris_stage(__constant const FlowParams* p, __constant const Debr
                            __global const uchar* mask, __global const int* tile_list, __global const real* b,
                            __global const real* gp, __global const real* gn, __global const real* curv, __global const real* manning,
                            __global const real* fslope,
-                           __global const real* delta, __global const real* cohesion,
+                           __global const real* delta,
                            __global const real* pbed, __global real* impulse,
                            __global const real* S_base, __global const real* hf_base, __global const real* qfx_base,
                            __global const real* qfy_base, __global const real* S_st, __global const real* hf_st,
@@ -186,11 +193,11 @@ __kernel void debris_stage(__constant const FlowParams* p, __constant const Debr
   const int k = cell_index(p, i, j);
   const real g = gp[k], gnk = gn[k];
   const real dtdx = dt / p->dx;
-  const Material mc = material_of(p, dp, S_st, hf_st, delta, cohesion, k, n);
+  const Material mc = material_of(p, dp, S_st, hf_st, delta, k, n);
 
-  real dS[NSOLID] = {0, 0, 0, 0, 0, 0};
+  real dS[NSOLID] = {0, 0, 0, 0, 0, 0, 0};
   real dhf = 0, dqf[2] = {0, 0}, out_s = 0, out_f = 0;
-  real mass_s[2], mass_f[2], norm_s[2], norm_f[2], tang_s[2], tang_f[2], sc_flux[3][2];
+  real mass_s[2], mass_f[2], norm_s[2], norm_f[2], tang_s[2], tang_f[2], sc_flux[NSCALAR][2];
   real beta_lo[2], beta_hi[2];  // blocked fractions of the column at the minus / plus face (solid_bed.cl)
 #if DEBRIS_OBSTACLE
   real beta_lo_dem[2], beta_hi_dem[2];  // the same over the DEM alone (the particles' share of the walls)
@@ -236,8 +243,8 @@ __kernel void debris_stage(__constant const FlowParams* p, __constant const Debr
     // Solid faces: each side's lateral pressure with its cell's K (active where its solids extend
     // along dir, passive where they contract), from its face thickness of the mixture, and the
     // terrain factor of its cell (curvature of the bed, solid_bed.cl).
-    const Material mm = m_in ? material_of(p, dp, S_st, hf_st, delta, cohesion, km, n) : mc;
-    const Material mp = p_in ? material_of(p, dp, S_st, hf_st, delta, cohesion, kp, n) : mc;
+    const Material mm = m_in ? material_of(p, dp, S_st, hf_st, delta, km, n) : mc;
+    const Material mp = p_in ? material_of(p, dp, S_st, hf_st, delta, kp, n) : mc;
     real Km, Kc, Kp;
     if (dp->earth_pressure == EARTH_CONSTANT) {
       Km = Kc = Kp = dp->k_const;
@@ -332,10 +339,11 @@ __kernel void debris_stage(__constant const FlowParams* p, __constant const Debr
 #endif
     tang_s[dir] = Sp.fqt - Sm.fqt;
     // Scalars: upwind value times the solid mass flux.
-    for (int c = 0; c < 3; ++c) {
-      const real vm = scalar_of(S_st, n, 3 + c, km, p->h_dry, c == 0 ? dp->phi_default : c == 1 ? dp->rho_s_default : dp->d_default);
-      const real v0 = scalar_of(S_st, n, 3 + c, k, p->h_dry, c == 0 ? dp->phi_default : c == 1 ? dp->rho_s_default : dp->d_default);
-      const real vp = scalar_of(S_st, n, 3 + c, kp, p->h_dry, c == 0 ? dp->phi_default : c == 1 ? dp->rho_s_default : dp->d_default);
+    for (int c = 0; c < NSCALAR; ++c) {
+      const real fallback = scalar_default(dp, c);
+      const real vm = scalar_of(S_st, n, 3 + c, km, p->h_dry, fallback);
+      const real v0 = scalar_of(S_st, n, 3 + c, k, p->h_dry, fallback);
+      const real vp = scalar_of(S_st, n, 3 + c, kp, p->h_dry, fallback);
       sc_flux[c][dir] = Sp.fh * (Sp.fh >= (real)0 ? v0 : vp) - Sm.fh * (Sm.fh >= (real)0 ? vm : v0);
     }
     if (!m_in) out_f -= Fm.fh, out_s -= Sm.fh;
@@ -347,7 +355,7 @@ __kernel void debris_stage(__constant const FlowParams* p, __constant const Debr
   dS[0] = -dtdx * (mass_s[0] + mass_s[1]);
   dS[1] = -dtdx * (norm_s[0] + tang_s[1]);
   dS[2] = -dtdx * (norm_s[1] + tang_s[0]);
-  for (int c = 0; c < 3; ++c) dS[3 + c] = -dtdx * (sc_flux[c][0] + sc_flux[c][1]);
+  for (int c = 0; c < NSCALAR; ++c) dS[3 + c] = -dtdx * (sc_flux[c][0] + sc_flux[c][1]);
 
   // RK combination.
   real Sn[NSOLID];

@@ -11,7 +11,8 @@
 // the entrained material (at rest) does not change, so over a step the entrained depth is exactly
 // dh = E s |q_s + q_f| dt, capped by the erodible depth left.
 // Conservation: the entrained depth joins the solids (h_s += dh, transported scalars at the flow's
-// values, the defaults where there were no solids) with zero momentum, so the momenta of both phases
+// values, cohesion included: the erodible layer takes the flow's properties; the defaults
+// where there were no solids, no cohesion) with zero momentum, so the momenta of both phases
 // are unchanged (the entrained mass enters at rest; the flow slows by mass dilution); the bed drops by
 // dh (b -= dh) and the erodible depth and the bed change record it, so h_s + erodible is conserved
 // per cell and the surface b + h_s is unchanged (a flow at rest stays at rest; nothing at rest
@@ -38,8 +39,8 @@ __kernel void debris_entrain(__constant const FlowParams* p, __constant const De
   const real dh = fmin(e, growth * s * q * dt);
   if (!(dh > (real)0)) return;
   const real hs = S[k], hn = hs + dh;
-  const real defaults[3] = {dp->phi_default, dp->rho_s_default, dp->d_default};
-  for (int cc = 0; cc < 3; ++cc) {
+  const real defaults[4] = {dp->phi_default, dp->rho_s_default, dp->d_default, (real)0};
+  for (int cc = 0; cc < 4; ++cc) {
     const real value = hs > p->h_dry ? S[(3 + cc) * n + k] / hs : defaults[cc];
     S[(3 + cc) * n + k] = hn * value;
   }

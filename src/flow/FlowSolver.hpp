@@ -34,7 +34,8 @@ struct FlowInput {
   std::vector<double> rhoS;        ///< solid density [kg/m^3]
   std::vector<double> grain;       ///< grain size [m]
   std::vector<double> delta;       ///< bed friction angle [rad] (used unless DebrisSettings::deltaFromPhi)
-  std::vector<double> cohesion;    ///< cohesion [Pa] (Bell's reduction of the lateral pressure)
+  std::vector<double> cohesion;    ///< cohesion [Pa] of the solids there (Bell's reduction of the lateral
+                                   ///< pressure), carried with them as they flow
   /// Entrainment only (FlowSettings::entrainment): vertical depth of bed material the flow can take
   /// up [m] (empty: none).
   std::vector<double> erodible;
@@ -109,7 +110,7 @@ class FlowSolver {
   std::vector<double> hs() const;
   std::vector<double> qsx() const;
   std::vector<double> qsy() const;
-  std::vector<double> solidScalar(int which) const;  ///< 0 phi, 1 rho_s, 2 grain size
+  std::vector<double> solidScalar(int which) const;  ///< 0 phi, 1 rho_s, 2 grain size, 3 cohesion [Pa]
   DebrisMaxima debrisMaxima() const;
   /// The evolving state as the device holds it (h, qx, qy, maxima, arrival; raw bytes of the run's
   /// precision) and the time, for checkpoints. restoreState() after setInput() of the same scene
@@ -208,7 +209,7 @@ class FlowSolver {
   // Two-phase model: solid state (6 components, see kernels/flow/debris_stage.cl) at the start of
   // the step and after stage 1, static-solid flags, static maps, maxima.
   compute::RawBuffer debrisParams_;
-  compute::RealBuffer solid0_, solid1_, delta_, cohesion_, maxima_;
+  compute::RealBuffer solid0_, solid1_, delta_, maxima_;
   compute::RealBuffer curvature_;  ///< bed curvature b_xx, b_xy, b_yy (flow/SlopeGravity.hpp)
   compute::RealBuffer particleBed_, bedImpulse_;
   compute::Buffer<uint8_t> lock0_, lock1_;

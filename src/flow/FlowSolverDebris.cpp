@@ -13,7 +13,7 @@
 namespace talus::flow {
 namespace {
 
-constexpr int kSolidComponents = 6;  // h_s, q_sx, q_sy, h_s phi, h_s rho_s, h_s d
+constexpr int kSolidComponents = 7;  // h_s, q_sx, q_sy, h_s phi, h_s rho_s, h_s d, h_s c
 constexpr int kMaximaComponents = 7;
 constexpr double kDefaultPhi = kDebrisDefaultPhi;  // 30 degrees, where no solids are
 constexpr double kDefaultRhoS = kDebrisDefaultRhoS;
@@ -38,7 +38,6 @@ void FlowSolver::buildDebris() {
   solid0_ = compute::RealBuffer(ctx, kSolidComponents * n, "solid state");
   solid1_ = compute::RealBuffer(ctx, kSolidComponents * n, "solid state stage");
   delta_ = compute::RealBuffer(ctx, n, "bed friction angle");
-  cohesion_ = compute::RealBuffer(ctx, n, "cohesion");
   curvature_ = compute::RealBuffer(ctx, 3 * n, "bed curvature");
   maxima_ = compute::RealBuffer(ctx, kMaximaComponents * n, "two-phase maxima");
   lock0_ = compute::Buffer<uint8_t>(ctx, n, "static solids");
@@ -75,6 +74,7 @@ void FlowSolver::setDebrisInput(const FlowInput& in, const std::vector<double>& 
   const std::vector<double> phi = orFill(in.phi, n, kDefaultPhi, "phi");
   const std::vector<double> rho = orFill(in.rhoS, n, kDefaultRhoS, "rhoS");
   const std::vector<double> grain = orFill(in.grain, n, kDefaultGrain, "grain");
+  const std::vector<double> cohesion = orFill(in.cohesion, n, 0.0, "cohesion");
   std::vector<double> state(kSolidComponents * n, 0.0);
   std::vector<uint8_t> lock(n, 1);
   std::vector<double> maxima(kMaximaComponents * n, 0.0);
@@ -87,6 +87,7 @@ void FlowSolver::setDebrisInput(const FlowInput& in, const std::vector<double>& 
     state[3 * n + k] = hs[k] * phi[k];
     state[4 * n + k] = hs[k] * rho[k];
     state[5 * n + k] = hs[k] * grain[k];
+    state[6 * n + k] = hs[k] * cohesion[k];  // carried with the material from here on
     // Solids at rest start static: they move only once their driving force beats friction.
     lock[k] = wet && (state[n + k] != 0.0 || state[2 * n + k] != 0.0) ? 0 : 1;
     maxima[k] = h[k];
@@ -99,7 +100,6 @@ void FlowSolver::setDebrisInput(const FlowInput& in, const std::vector<double>& 
   lock1_.write(lock);
   maxima_.upload(maxima);
   delta_.upload(orFill(in.delta, n, kDefaultPhi, "delta"));
-  cohesion_.upload(orFill(in.cohesion, n, 0.0, "cohesion"));
 }
 
 void FlowSolver::enqueueDebrisStage(bool first, double dt) {
@@ -109,7 +109,7 @@ void FlowSolver::enqueueDebrisStage(bool first, double dt) {
   compute::RealBuffer &hout = first ? h1_ : h_, &qxout = first ? qx1_ : qx_, &qyout = first ? qy1_ : qy_;
   compute::Buffer<uint8_t>&lst = first ? lock0_ : lock1_, &lout = first ? lock1_ : lock0_;
   if (first && settings_.particleBed) bedImpulse_.fill(0.0);  // the impulse of this step only
-  debrisStage_.bind(params_, debrisParams_, mask_, tileList_, bed_, gp_, gn_, curvature_, manning_, bedSlope_, delta_, cohesion_,
+  debrisStage_.bind(params_, debrisParams_, mask_, tileList_, bed_, gp_, gn_, curvature_, manning_, bedSlope_, delta_,
                     particleBed_, bedImpulse_, solid0_, h_,
                     qx_, qy_, Sst, hst, qxst, qyst, lst, Sout, hout, qxout, qyout, lout, outStep_,
                     compute::RealArg{dt}, compute::RealArg{first ? 0.0 : 0.5}, compute::RealArg{0.5 * dt},
@@ -142,7 +142,7 @@ std::vector<double> FlowSolver::qsy() const { return solidComponent(2); }
 
 std::vector<double> FlowSolver::solidScalar(int which) const {
   const std::vector<double> hsv = hs(), s = solidComponent(3 + which);
-  const double fallback = which == 0 ? kDefaultPhi : which == 1 ? kDefaultRhoS : kDefaultGrain;
+  const double fallback = which == 0 ? kDefaultPhi : which == 1 ? kDefaultRhoS : which == 2 ? kDefaultGrain : 0.0;
   std::vector<double> out(hsv.size());
   for (std::size_t k = 0; k < hsv.size(); ++k) out[k] = hsv[k] > settings_.hDry ? s[k] / hsv[k] : fallback;
   return out;

@@ -83,7 +83,8 @@ void addSolidKeys(KeyRegistry& r) {
       // OpenLISEM's form says Pa, but its particle kernel multiplies the value by 1000 (kPa), as
       // Talus does: docs/runfile.md, "OpenLISEM Hazard run-files".
       << lisem("initialscohesion.map", solidMap("Initial Cohesion", "0", "kPa", 0, 1e6,
-                                                "cohesion c (reduces the lateral pressure, Bell); kPa as OpenLISEM's code reads it"))
+                                                "cohesion c of the initial solids, carried with them (reduces the lateral "
+                                                "pressure, Bell); kPa as OpenLISEM's code reads it"))
       << flag("Bed Friction Equals IFA", "1", "bed friction angle delta = internal friction angle phi")
       << solidMap("Bed Friction Angle", "0.5236", "rad", 0, 1.5, "bed friction angle delta (when not equal to IFA)")
       << choice("Solid Rheology", rheologyNames(), "coulomb",

@@ -43,6 +43,7 @@ class FieldCache {
     if (f == "hMax") return s_.hMax();
     if (f == "vMax") return s_.vMax();
     if (f == "arrival") return s_.arrival();
+    if (f == "cohesion") return s_.solidScalar(3);
     if (!maxima_) maxima_ = std::make_unique<flow::DebrisMaxima>(s_.debrisMaxima());
     if (f == "m.hf") return maxima_->hf;
     if (f == "m.hs") return maxima_->hs;
@@ -273,7 +274,9 @@ ViewSnapshot ViewFields::snapshot(const std::vector<std::string>& names, bool ke
       const auto& a = cache.get("arrival");
       for (std::size_t k = 0; k < cells; ++k) out[k] = a[k] < 0 ? kNoValue : static_cast<float>(a[k]);
     } else if (n == "cohesion") {
-      out.assign(scene_.flow.cohesion.begin(), scene_.flow.cohesion.end());
+      // the cohesion the solids carry now (none where there are none)
+      const auto &c = cache.get("cohesion"), &hs = cache.get("hs");
+      for (std::size_t k = 0; k < cells; ++k) out[k] = hs[k] > hDry ? static_cast<float>(c[k]) : kNoValue;
     }
     add(n, std::move(out));
   }
