@@ -4,6 +4,8 @@
 // after the particles were transferred to the grid (P2G: thickness H_c, mass M_c, momentum P_c):
 //   particle_grid_bed:     the bed the grid phases see, (H_c, u_c, v_c) per cell, with u_c the
 //                          confined phase's velocity after the drag exchange (P_c / M_c + du).
+//   particle_cell_velocity: the same velocity alone, (u_c, v_c) per cell (0 where no particle mass),
+//                          for the PIC share of the G2P after the drag exchange.
 //   particle_bed_velocity: the impulse J the grid phases gave that bed over a grid step (momentum per
 //                          area, kernels/flow/debris_stage.cl) as a velocity change of the cell's
 //                          confined phase, du = J_eff dx^2 / M_c; G2P with the P2G weights then gives
@@ -25,6 +27,16 @@ __kernel void particle_grid_bed(const int n, __global const real* Hc, __global c
   bed[k] = has ? Hc[k] : (real)0;
   bed[n + k] = has ? Px[k] / m + du[k] : (real)0;
   bed[2 * n + k] = has ? Py[k] / m + dv[k] : (real)0;
+}
+
+__kernel void particle_cell_velocity(const int n, __global const real* Mc, __global const real* Px,
+                                     __global const real* Py, __global const real* du, __global const real* dv,
+                                     __global real* u, __global real* v) {
+  const int k = get_global_id(0);
+  if (k >= n) return;
+  const real m = Mc[k];
+  u[k] = m > (real)0 ? Px[k] / m + du[k] : (real)0;
+  v[k] = m > (real)0 ? Py[k] / m + dv[k] : (real)0;
 }
 
 /// 1 when cell (i, j) lies on the raster and holds particles.

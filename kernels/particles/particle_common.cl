@@ -14,6 +14,8 @@ typedef struct {
   int nx, ny;             // terrain grid
   int count;              // particles in the arrays (alive ones first after each sort)
   int earth_pressure;     // PARTICLE_EARTH_*
+  int edge_wall;          // 1: the raster edge is a wall, 0: open (particles leave as outflow)
+  int nodata_wall;        // the same for the faces to nodata cells
   real dx;                // terrain cell [m]
   real h;                 // SPH smoothing length [m] (support 2h)
   real shear_modulus;     // G [Pa]

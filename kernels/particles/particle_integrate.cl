@@ -3,8 +3,9 @@
 // applied implicitly (it stops a particle but never reverses it; gamma = rho_f / rho_c where the
 // grid's free fluid stands at the particle (`fluid_depth`, from G2P), 0 for dry particles: buoyancy
 // and pore pressure reduce the effective normal stress, P.39), then
-// v <- v + dt a, x <- x + dt v (symplectic Euler), and the particle's area A <- A exp(dt div v). A particle that leaves the raster or enters a
-// nodata cell is removed: its mass goes to `out_mass` (tallied by the host as outflow), its
+// v <- v + dt a, x <- x + dt v (symplectic Euler), and the particle's area A <- A exp(dt div v). A particle that crosses an open boundary (the raster
+// edge with `Boundary Type=open`, a nodata cell with `Nodata Boundary Type=open`; walls hold it, see
+// Walls below) is removed: its mass goes to `out_mass` (tallied by the host as outflow), its
 // position becomes NaN (it sorts behind every live particle at the next neighbour build) and its
 // mass zero.
 // Water release (OpenLISEM Hazard P.27-P.28): the confined fluid follows the intact bonds,
@@ -28,11 +29,13 @@
 #endif
 
 /// Rise of the reconstructed bed at the face from cell `here` to its neighbour (a, b) along one axis
-/// (d = +1 or -1): the neighbour's face value minus ours. 0 when the neighbour is not a domain cell
-/// of the raster (nodata cells and the raster's outside remove particles instead).
+/// (d = +1 or -1): the neighbour's face value minus ours. Where the neighbour is not a domain cell
+/// of the raster, infinite if that boundary is a wall (`Boundary Type`, `Nodata Boundary Type`:
+/// nothing crosses it), else 0 (the particle crosses and leaves as outflow).
 inline real face_rise(__constant const ParticleParams* p, __global const uchar* mask, __global const real* bed,
                       __global const real* lslope, int here, int a, int b, int axis, int d) {
-  if (a < 0 || b < 0 || a >= p->nx || b >= p->ny || !mask[b * p->nx + a]) return (real)0;
+  if (a < 0 || b < 0 || a >= p->nx || b >= p->ny) return p->edge_wall ? (real)INFINITY : (real)0;
+  if (!mask[b * p->nx + a]) return p->nodata_wall ? (real)INFINITY : (real)0;
   const int n = p->nx * p->ny, nb = b * p->nx + a;
   const real hw = (real)0.5 * p->dx * (real)d;
   const real own = bed[here] + hw * lslope[axis * n + here], other = bed[nb] - hw * lslope[axis * n + nb];

@@ -10,13 +10,14 @@ struct ParticleParamsT {
   int32_t nx, ny;
   int32_t count;
   int32_t earthPressure;  // 0 Savage-Hutter active/passive, 1 constant
+  int32_t edgeWall, nodataWall;  // 1 where the raster edge / nodata faces are walls, 0 open
   Real dx, h, shearModulus, bulkModulus, soundSpeed, alphaPi, betaPi, epsArt, nArt, wSpacing, dilatancy, epsCrit,
       kConst, poreB, rhoF, pad1;
 };
 
 // The OpenCL C struct has the same member order; both layouts must match byte for byte.
-static_assert(offsetof(ParticleParamsT<float>, dx) == 16 && sizeof(ParticleParamsT<float>) == 80, "ParticleParams<float>");
-static_assert(offsetof(ParticleParamsT<double>, dx) == 16 && sizeof(ParticleParamsT<double>) == 144,
+static_assert(offsetof(ParticleParamsT<float>, dx) == 24 && sizeof(ParticleParamsT<float>) == 88, "ParticleParams<float>");
+static_assert(offsetof(ParticleParamsT<double>, dx) == 24 && sizeof(ParticleParamsT<double>) == 152,
               "ParticleParams<double>");
 
 }  // namespace talus::particles

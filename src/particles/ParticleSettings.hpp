@@ -20,6 +20,15 @@ struct ParticleSettings {
   double fluidDensity = 1000.0;  ///< rho_f of the confined fluid released from broken bonds [kg/m^3]
   ParticleEarthPressure earthPressure = ParticleEarthPressure::Constant;
   double kConst = 1.0;
+  /// Whether the raster edge and the faces to nodata cells hold the particles as walls (else a
+  /// particle crossing them leaves the domain and is counted as outflow); the grid's `Boundary
+  /// Type` and `Nodata Boundary Type`, with their defaults.
+  bool edgeWalls = false;
+  /// PIC share a of the velocity the particles take from the exchange with the grid's fluid (spec
+  /// §6): v_p <- (1 - a) (v_p + du(x_p)) + a (u_c + du)(x_p), u_c the cell's confined-phase velocity
+  /// (P2G); 0 is FLIP (each particle keeps its own velocity plus the exchange's change), 1 PIC.
+  double picFraction = 0.0;
+  bool nodataWalls = true;
 
   double shearModulus() const { return youngModulus / (2 * (1 + poisson)); }
   double bulkModulus() const { return youngModulus / (3 * (1 - 2 * poisson)); }

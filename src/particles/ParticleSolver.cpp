@@ -75,6 +75,8 @@ void fillParams(compute::RawBuffer& buf, const Grid& g, const ParticleSettings& 
   p.ny = g.ny;
   p.count = static_cast<int32_t>(count);
   p.earthPressure = static_cast<int32_t>(s.earthPressure);
+  p.edgeWall = s.edgeWalls ? 1 : 0;
+  p.nodataWall = s.nodataWalls ? 1 : 0;
   p.dx = static_cast<Real>(g.dx);
   p.h = static_cast<Real>(h);
   p.shearModulus = static_cast<Real>(s.shearModulus());
@@ -192,6 +194,11 @@ void ParticleSolver::setFluidCoupling(const flow::DebrisSettings& fluid, double 
   const std::size_t cells = grid_.cells();
   for (compute::RealBuffer* b : {&cellH_, &cellM_, &cellPx_, &cellPy_, &cellDu_, &cellDv_})
     *b = compute::RealBuffer(ctx_, cells, "particle exchange cell field");
+  if (settings_.picFraction > 0) {
+    cellVelocity_ = compute::Kernel(ctx_.program("particles/particle_bed.cl"), "particle_cell_velocity");
+    cellU_ = compute::RealBuffer(ctx_, cells, "particle exchange cell velocity x");
+    cellV_ = compute::RealBuffer(ctx_, cells, "particle exchange cell velocity y");
+  }
   grain_ = grain;
   coupled_ = true;
 }
@@ -206,8 +213,15 @@ void ParticleSolver::exchangeWithFluid(const compute::RealBuffer& h, compute::Re
   drag_.bind(debrisParams_, cells, compute::RealArg{grid_.dx}, compute::RealArg{1e-6}, compute::RealArg{grain_}, cellH_,
              cellM_, cellPx_, cellPy_, h, qx, qy, cellDu_, cellDv_, compute::RealArg{dt});
   drag_.launch(compute::Range{grid_.cells()}, kParticleGroup, "particle_fluid_drag");
-  // FLIP: each particle gains the velocity change of the cells it weighs on (same weights as P2G).
-  transfer_->gridVelocityToParticles(cellDu_, cellDv_, cellDu_, cellDv_, 0.0, x_, y_, count_, vx_, vy_);
+  // FLIP: each particle gains the velocity change of the cells it weighs on (same weights as P2G);
+  // the PIC share takes the cells' velocity after the exchange instead (spec §6, `PIC Fraction`).
+  const double pic = settings_.picFraction;
+  if (pic > 0) {
+    cellVelocity_.bind(cells, cellM_, cellPx_, cellPy_, cellDu_, cellDv_, cellU_, cellV_);
+    cellVelocity_.launch(compute::Range{grid_.cells()}, kParticleGroup, "particle_cell_velocity");
+  }
+  transfer_->gridVelocityToParticles(pic > 0 ? cellU_ : cellDu_, pic > 0 ? cellV_ : cellDv_, cellDu_, cellDv_, pic, x_,
+                                     y_, count_, vx_, vy_);
   transfer_->gridToParticles(h, x_, y_, count_, fluidDepth_);
   gridValid_ = true;
   updateDiagnostics();

@@ -161,9 +161,10 @@ class ParticleSolver {
   bool coupled_ = false;
   double grain_ = 0.01;
   compute::RawBuffer debrisParams_;
-  compute::Kernel drag_, gridBed_, bedVelocity_;
+  compute::Kernel drag_, gridBed_, bedVelocity_, cellVelocity_;
   bool gridValid_ = false;  ///< cellH_, cellM_, cellPx_, cellPy_ hold the P2G of the current positions
   compute::RealBuffer cellH_, cellM_, cellPx_, cellPy_, cellDu_, cellDv_;
+  compute::RealBuffer cellU_, cellV_;  ///< the cells' confined-phase velocity after the exchange (PIC share only)
   std::vector<double> gnHost_;
   // Per sub-step scratch (not reordered).
   compute::RealBuffer rhoA_, H_, Nxx_, Nyy_, Nxy_, Minv_, div_, ax_, ay_, outMass_, speed_;

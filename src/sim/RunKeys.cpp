@@ -159,7 +159,10 @@ void addParticleKeys(KeyRegistry& r) {
       << real("Artificial Viscosity Alpha", "1", "-", 0, 10, "alpha_Pi of Monaghan's artificial viscosity (P.83)")
       << real("Artificial Viscosity Beta", "1", "-", 0, 10, "beta_Pi of Monaghan's artificial viscosity (P.83)")
       << real("Artificial Stress Epsilon", "0.3", "-", 0, 1, "epsilon_0 of the artificial stress against tensile clumping (P.85)")
-      << real("Artificial Stress Exponent", "4", "-", 1, 8, "n of the artificial stress (P.86)");
+      << real("Artificial Stress Exponent", "4", "-", 1, 8, "n of the artificial stress (P.86)")
+      << real("PIC Fraction", "0", "-", 0, 1,
+              "PIC share of the velocity the particles take from the exchange with the grid's fluid: 0 FLIP "
+              "(own velocity plus the exchange's change), 1 PIC (the cells' velocity; smooths, dissipates)");
 }
 
 void addTimeKeys(KeyRegistry& r) {

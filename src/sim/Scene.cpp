@@ -317,6 +317,7 @@ Scene loadScene(const io::RunConfig& cfg) {
     ps.earthPressure = cfg.choice("Earth Pressure") == "constant" ? particles::ParticleEarthPressure::Constant
                                                                   : particles::ParticleEarthPressure::SavageHutter;
     ps.kConst = cfg.real("Earth Pressure Coefficient");
+    ps.picFraction = cfg.real("PIC Fraction");
     if (s.particles.terrain.mask.empty()) {  // no solids at all: a run without particles
       s.particles.terrain.mask = s.dem.valid;
       s.particles.terrain.bed = localBed;
@@ -349,6 +350,9 @@ Scene loadScene(const io::RunConfig& cfg) {
   f.arrivalH = cfg.real("Arrival Threshold");
   f.edge = flow::parseBoundary(cfg.choice("Boundary Type"));
   f.nodata = flow::parseBoundary(cfg.choice("Nodata Boundary Type"));
+  // The particles meet the same boundaries as the grid: walls hold them, open edges take them out.
+  s.particles.settings.edgeWalls = f.edge == flow::Boundary::Wall;
+  s.particles.settings.nodataWalls = f.nodata == flow::Boundary::Wall;
   f.slopeCorrection = cfg.flag("Slope Correction");
   f.curvature = cfg.flag("Curvature Acceleration");
   f.skipDryTiles = cfg.flag("Skip Dry Tiles");

@@ -582,3 +582,15 @@ TEST_F(Scene, NonZeroStartTimeReportsAbsoluteTimes) {
                              << firstWrong;
   EXPECT_EQ(wrongLater, 0) << "cells reached later whose arrival is outside (60, 66] s; first: " << firstWrong;
 }
+
+TEST_F(Scene, ParticlesMeetTheGridsBoundaries) {
+  // The particles are held or let out by the same edges as the grid (issue 18: walls removed them).
+  writeMap("dem.tif", loadingDem());
+  for (const char* edge : {"wall", "open"})
+    for (const char* nodata : {"wall", "open"}) {
+      const talus::sim::Scene s = loadScene(writeRun(std::string("DEM=dem.tif\nBoundary Type=") + edge +
+                                                     "\nNodata Boundary Type=" + nodata + "\n"));
+      EXPECT_EQ(s.particles.settings.edgeWalls, std::string(edge) == "wall") << edge;
+      EXPECT_EQ(s.particles.settings.nodataWalls, std::string(nodata) == "wall") << nodata;
+    }
+}

@@ -2,12 +2,16 @@
 // kernels/particles/particle_exchange.cl), double precision:
 //  - ParticleFluid.DragConservesMomentumAndRelaxesAtTheClosureRate: a cohesive layer at rest in a
 //    uniform stream of water, one exchange over dt;
+//  - ParticleFluid.PicShareBlendsTheTransferAndKeepsMomentum: the PIC/FLIP blend of that exchange
+//    (`PIC Fraction`);
 //  - ParticleFluid.BuoyancyReducesTheBasalFriction: a block on a slope that friction holds when dry
 //    slides when submerged, at the acceleration of the buoyancy-reduced friction (P.39).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <vector>
 
 #include "core/Constants.hpp"
 #include "flow/FlowSolver.hpp"
@@ -72,6 +76,45 @@ double sum(const std::vector<double>& v) {
   return s;
 }
 
+/// Linear drag (off when `on` is false) with the multiplier 500: rate x dt ~ 1 at dt = 0.05 s, a
+/// clear relaxation within one exchange.
+flow::DebrisSettings dragClosure(bool on, double rhoF) {
+  flow::DebrisSettings ds;
+  ds.drag = on ? flow::DragLaw::Linear : flow::DragLaw::Off;
+  ds.dragMultiplier = 500;
+  ds.fluidDensity = rhoF;
+  return ds;
+}
+
+/// One exchange over dt of the particles of `c` (settings `ps`, velocities `vx` along x when given)
+/// with its water, the drag dragClosure(drag), grain size `grain`. Returns the particles after it and the
+/// total x momentum (particles + rho_f sum q_f dx^2) before and after.
+struct Exchange {
+  ParticleState state;
+  double before = 0, after = 0;
+};
+
+Exchange exchangeOnce(const Coupled& c, const ParticleSettings& ps, bool drag, double grain, double dt,
+                      const std::vector<double>& vx = {}) {
+  compute::Context& ctx = test::testContext(compute::Precision::Double);
+  ParticleSolver particles(ctx, c.grid, c.terrain, ps);
+  particles.setParticles(c.seeded, c.material);
+  if (!vx.empty()) particles.setVelocities(vx, std::vector<double>(vx.size(), 0.0));
+  particles.setFluidCoupling(dragClosure(drag, ps.fluidDensity), grain);
+  flow::FlowSettings fs;
+  fs.edge = flow::Boundary::Wall;
+  flow::FlowSolver fluid(ctx, c.grid, fs);
+  fluid.setInput(c.fluid);
+  Exchange r;
+  r.before = momentumX(particles.state()) + ps.fluidDensity * sum(fluid.qx());
+  fluid.changeDischarge([&](compute::RealBuffer& h, compute::RealBuffer& qx, compute::RealBuffer& qy) {
+    particles.exchangeWithFluid(h, qx, qy, dt);
+  });
+  r.state = particles.state();
+  r.after = momentumX(r.state) + ps.fluidDensity * sum(fluid.qx());
+  return r;
+}
+
 }  // namespace
 
 // Momentum: particles + rho_f sum q dx^2 before and after one exchange, to round-off (1e-12 of
@@ -84,28 +127,14 @@ double sum(const std::vector<double>& v) {
 // changes.
 TEST(ParticleFluid, DragConservesMomentumAndRelaxesAtTheClosureRate) {
   const double hc = 2.0, hf = 1.0, uf = 1.0, rhoF = 1000.0, dt = 0.05, grain = 0.005;
-  compute::Context& ctx = test::testContext(compute::Precision::Double);
   for (bool off : {false, true}) {
-    Coupled c = scene(0.0, hc, hf, uf);
+    const Coupled c = scene(0.0, hc, hf, uf);
     ParticleSettings ps;
     ps.fluidDensity = rhoF;
-    ParticleSolver particles(ctx, c.grid, c.terrain, ps);
-    particles.setParticles(c.seeded, c.material);
-    flow::DebrisSettings ds;
-    ds.drag = off ? flow::DragLaw::Off : flow::DragLaw::Linear;
-    ds.dragMultiplier = 500;  // rate x dt ~ 1: a clear relaxation within one exchange
-    ds.fluidDensity = rhoF;
-    particles.setFluidCoupling(ds, grain);
-    flow::FlowSettings fs;
-    fs.edge = flow::Boundary::Wall;
-    flow::FlowSolver fluid(ctx, c.grid, fs);
-    fluid.setInput(c.fluid);
-    const double before = momentumX(particles.state()) + rhoF * sum(fluid.qx());
-    fluid.changeDischarge([&](compute::RealBuffer& h, compute::RealBuffer& qx, compute::RealBuffer& qy) {
-      particles.exchangeWithFluid(h, qx, qy, dt);
-    });
-    const ParticleState s = particles.state();
-    const double after = momentumX(s) + rhoF * sum(fluid.qx());
+    const Exchange e = exchangeOnce(c, ps, !off, grain, dt);
+    const ParticleState& s = e.state;
+    const double before = e.before, after = e.after;
+    const flow::DebrisSettings ds = dragClosure(true, rhoF);  // for the exact relaxation below
     EXPECT_NEAR(after, before, 1e-12 * rhoF * hf * uf * 1600) << (off ? "drag off" : "drag on");
     double mean = 0;
     int inner = 0;
@@ -125,6 +154,55 @@ TEST(ParticleFluid, DragConservesMomentumAndRelaxesAtTheClosureRate) {
     EXPECT_GT(exact, 0.01);
     EXPECT_NEAR(mean, exact, 0.01 * exact);
   }
+}
+
+// The PIC share a of the exchange's G2P (spec §6): v_p <- (1 - a) (v_p + du) + a (u_c + du) at the
+// particle. The layer of the drag test above, its particles given a velocity noise of +-0.5 m/s
+// (alternating by index, so each cell's mean is near zero), one exchange with a = 0, 1/2 and 1:
+//  - total momentum (particles + fluid) conserved for every a to round-off (1e-12 of the fluid's, as
+//    above): sum_p m_p sum_c w_pc u_c = sum_c M_c u_c = sum of the P2G momenta, so PIC is as
+//    conservative as FLIP;
+//  - the update is linear in a: the a = 1/2 velocities are the mean of the a = 0 and a = 1 ones to
+//    round-off (1e-13 m/s);
+//  - FLIP keeps the particles' own noise (its standard deviation stays 0.5 m/s to 1 %: du is the
+//    cells' smooth change), PIC replaces it by the cells' interpolated velocity: measured spread
+//    below a tenth of it (asserted).
+TEST(ParticleFluid, PicShareBlendsTheTransferAndKeepsMomentum) {
+  const double hc = 2.0, hf = 1.0, uf = 1.0, rhoF = 1000.0, dt = 0.05, grain = 0.005;
+  std::vector<std::vector<double>> velocities;
+  std::vector<double> spread;
+  for (double a : {0.0, 0.5, 1.0}) {
+    const Coupled c = scene(0.0, hc, hf, uf);
+    ParticleSettings ps;
+    ps.fluidDensity = rhoF;
+    ps.picFraction = a;
+    std::vector<double> vx(c.seeded.size());
+    for (std::size_t q = 0; q < vx.size(); ++q) vx[q] = q % 2 ? -0.5 : 0.5;
+    const Exchange e = exchangeOnce(c, ps, true, grain, dt, vx);
+    const ParticleState& s = e.state;
+    const double before = e.before, after = e.after;
+    EXPECT_NEAR(after, before, 1e-12 * rhoF * hf * uf * 1600) << "PIC fraction " << a;
+    // The particles come back in the order of the last neighbour sort, the same for every a (the
+    // positions are the same); velocities are compared particle by particle in that order.
+    velocities.push_back(s.vx);
+    double mean = 0, var = 0;
+    int inner = 0;
+    for (std::size_t q = 0; q < s.size(); ++q)
+      if (s.x[q] > 14 && s.x[q] < 26 && s.y[q] > 14 && s.y[q] < 26) mean += s.vx[q], ++inner;
+    mean /= inner;
+    for (std::size_t q = 0; q < s.size(); ++q)
+      if (s.x[q] > 14 && s.x[q] < 26 && s.y[q] > 14 && s.y[q] < 26) var += (s.vx[q] - mean) * (s.vx[q] - mean);
+    spread.push_back(std::sqrt(var / inner));
+    std::printf("PIC fraction %.1f: momentum %.9e -> %.9e, velocity spread in the middle %.4f m/s (mean %.4f)\n", a,
+                before, after, spread.back(), mean);
+  }
+  double linear = 0;
+  for (std::size_t q = 0; q < velocities[0].size(); ++q)
+    linear = std::max(linear, std::fabs(velocities[1][q] - 0.5 * (velocities[0][q] + velocities[2][q])));
+  std::printf("PIC fraction 1/2 against the mean of 0 and 1: %.2e m/s\n", linear);
+  EXPECT_LE(linear, 1e-13);
+  EXPECT_NEAR(spread[0], 0.5, 0.005) << "FLIP keeps the particles' own velocities";
+  EXPECT_LT(spread[2], 0.1 * spread[0]) << "PIC takes the cells' velocity";
 }
 
 // Dry, the block on the 26.6-degree plane (tan 0.5) is held by tan(delta) = 0.7. Submerged in still
