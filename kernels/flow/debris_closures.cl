@@ -5,6 +5,7 @@
 #ifndef TALUS_DEBRIS_CLOSURES_CL
 #define TALUS_DEBRIS_CLOSURES_CL
 #include "flow/flow_common.cl"
+#include "common/earth_pressure.cl"
 
 #define EARTH_SAVAGE_HUTTER 0
 #define EARTH_CONSTANT 1
@@ -68,28 +69,9 @@ inline real solid_velocity(real h, real q, real h_dry, real film_h) {
   return M_SQRT2 * h * q / sqrt(h4 + fmax(h4, e4));
 }
 
-/// Savage & Hutter (1989) earth-pressure coefficient: K = 2/cos^2(phi) (1 -+ sqrt(1 - cos^2(phi) /
-/// cos^2(delta))) - 1, active (-, the flow extends) or passive (+, it contracts); the root's argument
-/// is clipped at zero when delta > phi. `passive` in [0, 1] blends linearly from K_act (0) to K_pass (1).
-inline real earth_pressure(real phi, real delta, real passive) {
-  const real cp = cos(phi), cd = cos(delta);
-  const real root = sqrt(fmax((real)0, (real)1 - cp * cp / (cd * cd)));
-  return (real)2 / (cp * cp) * ((real)1 + ((real)2 * passive - (real)1) * root) - (real)1;
-}
-
-/// Passive share of the Savage-Hutter K of a cell whose solids' velocity changes by du across it
-/// (face hi minus face lo, along the direction): 0 while they extend or stay, rising linearly to 1 as
-/// they contract at the strain rate -du/dx = 0.1 sqrt(g_n / H) (H the mixture thickness). A sign
-/// switch instead flips K between K_act and K_pass on the velocity noise of a settling deposit, a
-/// pressure jump friction cannot hold: on fine grids such a deposit never came to rest (found by the
-/// column-collapse series, tests/verification/test_column_collapse.cpp: with the switch, a = 1 at 80
-/// cells per column length still moved at 2.8 s; with this ramp it is at rest at 0.37 s, and the
-/// runouts of the series are unchanged to the cell. A ramp 10 times steeper (0.01) still sloshed).
-inline real passive_share(real du, real dx, real gn, real H) {
-  const real rate = -du / dx;
-  if (!(rate > (real)0)) return (real)0;
-  return fmin(rate / ((real)0.1 * sqrt(gn / fmax(H, (real)1e-6))), (real)1);
-}
+/// Passive share of the Savage-Hutter K (common/earth_pressure.cl) of a cell whose solids' velocity
+/// changes by du across it (face hi minus face lo, along the direction): the strain rate -du/dx.
+inline real passive_share(real du, real dx, real gn, real H) { return passive_share_of_rate(-du / dx, gn, H); }
 
 /// O'Brien & Julien (1985) dynamic viscosity of the fluid phase carrying solids (OpenLISEM P.72).
 inline real obrien_julien(__constant const DebrisParams* dp, real alpha_s) {

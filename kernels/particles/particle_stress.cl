@@ -11,15 +11,18 @@
 //    sigma + sigma_lat I) and the vertical stress sigma_zz = -p_zz (P.41);
 // 3. the depth-integrated stress N = H (sigma + sigma_lat I) and M_i^-1 (identity where M is near
 //    singular), used by particle_forces.
-// K: Savage-Hutter active (the particle's velocity field extends, tr L > 0) or passive, from phi and
-// delta, or constant.
+// K: Savage-Hutter from phi and delta, active while the particle's velocity field extends or stays
+// (tr L >= 0) and ramping to passive as it contracts (as the grid's solids), or constant.
+#include "common/earth_pressure.cl"
 #include "particles/particle_material.cl"
 
-inline real particle_earth_pressure(__constant const ParticleParams* p, real phi, real delta, real divergence) {
+/// K of a particle whose velocity field has the divergence tr L: constant, or Savage-Hutter with the
+/// grid's ramp from active to passive over the contraction rate -tr L (common/earth_pressure.cl; it
+/// used to switch on the sign of tr L, which flips K on the velocity noise of a settling deposit).
+inline real particle_earth_pressure(__constant const ParticleParams* p, real phi, real delta, real divergence,
+                                    real gn, real H) {
   if (p->earth_pressure == PARTICLE_EARTH_CONSTANT) return p->k_const;
-  const real cp = cos(phi), cd = cos(delta);
-  const real root = sqrt(fmax((real)0, (real)1 - cp * cp / (cd * cd)));
-  return (real)2 / (cp * cp) * ((real)1 + (divergence < (real)0 ? root : -root)) - (real)1;
+  return earth_pressure(phi, delta, passive_share_of_rate(-divergence, gn, H));
 }
 
 __kernel void particle_stress(__constant const ParticleParams* p, __constant const NeighbourGridParams* ng,
@@ -66,8 +69,9 @@ __kernel void particle_stress(__constant const ParticleParams* p, __constant con
     L11 = g10 * i01 + g11 * i11;
   }
   const real Hi = H[i], rhoi = rho[i];
-  const real pzz = (real)0.5 * rhoi * terrain_sample(p, gn, xi, yi) * Hi;
-  const real K = particle_earth_pressure(p, phi[i], delta[i], L00 + L11);
+  const real gni = terrain_sample(p, gn, xi, yi);
+  const real pzz = (real)0.5 * rhoi * gni * Hi;
+  const real K = particle_earth_pressure(p, phi[i], delta[i], L00 + L11, gni, Hi);
   MaterialState s = {sxx[i], syy[i], sxy[i], coh[i], plastic[i]};
   const real lat = particle_material_update(p, &s, L00, L01, L10, L11, pzz, K, phi[i], coh0[i], dt);
   sxx[i] = s.sxx;
