@@ -3,7 +3,8 @@
 # under xvfb-run when the desktop application is built) on the
 # available OpenCL device (PoCL's CPU device on a machine without a GPU). With full checks on (in CI,
 # CI=true, or TALUS_FULL_CHECKS=1) it then also runs the suite under ASan/UBSan (tools/sanitize.sh)
-# and each fuzz target for 45 s (tools/fuzz.sh 45); TALUS_FULL_CHECKS=0 turns them off.
+# and each fuzz target for 45 s (tools/fuzz.sh 45) and builds the physics alone (TALUS_PHYSICS_ONLY);
+# TALUS_FULL_CHECKS=0 turns them off.
 # Exits non-zero when any step or any test fails.
 # Environment: TALUS_BUILD_DIR (default build), TALUS_TEST_JOBS (parallel ctest jobs, default 1),
 # TALUS_DEVICE (device selection, passed through to the tests), TALUS_FULL_CHECKS.
@@ -68,6 +69,14 @@ step_start=$(date +%s)
 # Reproducible in CI: fixed seed and run count (45 s is only the upper bound); fuzz longer by hand.
 TALUS_FUZZ_SEED=${TALUS_FUZZ_SEED:-1} TALUS_FUZZ_RUNS=${TALUS_FUZZ_RUNS:-12000} bash tools/fuzz.sh 45 || failed+=("fuzz")
 echo "test: fuzz.sh took $(( $(date +%s) - step_start )) s"
+step_start=$(date +%s)
+# The physics alone (-DTALUS_PHYSICS_ONLY=ON, what tools/gpu_check.sh builds on a bare GPU machine)
+# still configures, compiles and links without GDAL: its kernel tests and one benchmark.
+physics_dir="$build_dir-physics"
+{ cmake -S "$root" -B "$physics_dir" -G Ninja -DTALUS_PHYSICS_ONLY=ON -DCMAKE_BUILD_TYPE=Release >/dev/null &&
+  cmake --build "$physics_dir" --target talus_kernel_tests bench_flow -j "$(nproc)" >/dev/null; } ||
+  failed+=("physics-only build")
+echo "test: physics-only build took $(( $(date +%s) - step_start )) s"
 if (( ${#failed[@]} > 0 )); then
   echo "test: FAILED full checks: ${failed[*]}" >&2
   exit 1
