@@ -135,7 +135,7 @@ ParticleSolver::ParticleSolver(compute::Context& ctx, const Grid& grid, const Pa
   bed_ = compute::RealBuffer(ctx, n, "particle bed elevation");
   std::vector<double> bed = terrain.bed;
   for (std::size_t k = 0; k < n; ++k)
-    if (!terrain.mask[k]) bed[k] = 0.0;  // nodata cells remove particles; their value is never a wall
+    if (!terrain.mask[k]) bed[k] = 0.0;  // never read: a nodata face is a wall or an outlet (particle_integrate.cl)
   bed_.upload(bed);
   gradX_ = compute::RealBuffer(ctx, n, "bed gradient x");
   gradY_ = compute::RealBuffer(ctx, n, "bed gradient y");
