@@ -41,6 +41,12 @@ typedef struct {
   real packing;        // solid volume fraction phi_p of the saturated skeleton (submergence)
 } DebrisParams;
 
+/// Value of the solids' passive scalar `c` (0 phi, 1 rho_s, 2 d, 3 cohesion) where there are none
+/// (debris_stage.cl, entrainment.cl).
+inline real scalar_default(__constant const DebrisParams* dp, int c) {
+  return c == 0 ? dp->phi_default : c == 1 ? dp->rho_s_default : c == 2 ? dp->d_default : (real)0;
+}
+
 /// Buoyancy ratio gamma_eff = (rho_f / rho_s) chi of solids h_s under fluid h_f: the skeleton of
 /// packing phi_p holds the pore volume h_s (1 - phi_p) / phi_p, which the fluid fills from the bed
 /// up, so the submerged share of the solids is chi = min(1, h_f phi_p / (h_s (1 - phi_p))) and the

@@ -132,11 +132,6 @@ typedef struct {
   real gamma, phi, delta, rho_s, d, c_over_rho;
 } Material;
 
-/// Value of scalar `c` (0 phi, 1 rho_s, 2 d, 3 c) where there are no solids.
-inline real scalar_default(__constant const DebrisParams* dp, int c) {
-  return c == 0 ? dp->phi_default : c == 1 ? dp->rho_s_default : c == 2 ? dp->d_default : (real)0;
-}
-
 inline real scalar_of(__global const real* S, int n, int comp, int k, real h_dry, real fallback) {
   const real hs = S[k];
   return hs > h_dry ? S[comp * n + k] / hs : fallback;

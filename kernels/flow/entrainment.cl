@@ -39,9 +39,8 @@ __kernel void debris_entrain(__constant const FlowParams* p, __constant const De
   const real dh = fmin(e, growth * s * q * dt);
   if (!(dh > (real)0)) return;
   const real hs = S[k], hn = hs + dh;
-  const real defaults[4] = {dp->phi_default, dp->rho_s_default, dp->d_default, (real)0};
-  for (int cc = 0; cc < 4; ++cc) {
-    const real value = hs > p->h_dry ? S[(3 + cc) * n + k] / hs : defaults[cc];
+  for (int cc = 0; cc < 4; ++cc) {  // the passive scalars, h_s value (debris_stage.cl)
+    const real value = hs > p->h_dry ? S[(3 + cc) * n + k] / hs : scalar_default(dp, cc);
     S[(3 + cc) * n + k] = hn * value;
   }
   S[k] = hn;
