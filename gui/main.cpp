@@ -8,6 +8,7 @@
 #include <QCommandLineParser>
 #include <QSurfaceFormat>
 #include <QTimer>
+#include <cstdio>
 
 #include "render/GlSetup.hpp"
 #include "app/MainWindow.hpp"
@@ -39,12 +40,31 @@ int main(int argc, char** argv) {
   MainWindow window;
   window.setAskBeforeOverwrite(!cli.isSet(overwriteOpt));
   if (cli.isSet(outOpt)) window.setOutputOverride(cli.value(outOpt));
-  window.show();
   const QStringList files = cli.positionalArguments();
-  if (!files.isEmpty() && !window.openRunFile(files.front())) return 2;
+  bool valid = true;
+  if (!files.isEmpty()) {
+    // The terminal is where a command line's mistakes are read: a run-file that cannot be read
+    // ends here, before any window appears; an invalid one is reported and then opened with its
+    // errors at the fields, as File > Open shows it, so that it can be fixed there.
+    QString problems;
+    if (!window.openRunFile(files.front(), &problems)) {
+      std::fprintf(stderr, "talus-gui: %s\n", qPrintable(problems));
+      return 2;
+    }
+    valid = problems.isEmpty();
+    if (!valid)
+      std::fprintf(stderr, "talus-gui: run-file '%s' is not valid (the errors are shown at their fields):\n%s\n",
+                   qPrintable(files.front()), qPrintable(problems));
+  }
+  window.show();
   if (cli.isSet(tiltedOpt)) window.viewer().setMode(talus::gui::ViewCamera::Mode::Tilted);
   if (cli.isSet(layerOpt)) window.layers().selectLayer(cli.value(layerOpt));
-  if (cli.isSet(runOpt) && !window.startRun()) return 2;
+  // A picture of a run that cannot start would never be taken: fail instead of waiting forever.
+  if (!valid && cli.isSet(captureOpt)) return 2;
+  if (cli.isSet(runOpt)) {
+    if (!valid) std::fprintf(stderr, "talus-gui: nothing was started\n");
+    else if (!window.startRun()) return 2;
+  }
 
   if (cli.isSet(captureOpt)) {
     const QString spec = cli.value(captureOpt);

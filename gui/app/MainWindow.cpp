@@ -150,11 +150,12 @@ void MainWindow::updateActions() {
   setWindowTitle(title);
 }
 
-bool MainWindow::openRunFile(const QString& path) {
+bool MainWindow::openRunFile(const QString& path, QString* problems) {
   try {
     doc_ = std::make_unique<RunFileDocument>(RunFileDocument::load(path.toStdString(), talusRunKeys()));
   } catch (const std::exception& e) {
     log_->append(QString("error: %1").arg(e.what()));
+    if (problems) *problems = QString::fromStdString(e.what());
     return false;
   }
   form_->setDocument(doc_.get());
@@ -162,6 +163,7 @@ bool MainWindow::openRunFile(const QString& path) {
   log_->append("opened " + QFileInfo(path).absoluteFilePath());
   const ValidationResult r = validateDocument(*doc_);
   form_->showErrors(r);
+  if (problems) *problems = QString::fromStdString(describeProblems(r));
   if (r.ok()) showTerrainOf(*r.config);
   else log_->append("warning: the run-file has problems; they are shown next to their fields");
   updateActions();
@@ -187,13 +189,7 @@ bool MainWindow::startRun() {
   const ValidationResult r = validateDocument(*doc_);
   form_->showErrors(r);
   if (!r.ok()) {
-    log_->append("error: the run-file is not valid; nothing was started:\n" +
-                 QString::fromStdString([&] {
-                   std::string all;
-                   for (const auto& [k, v] : r.fieldErrors) all += v + "\n";
-                   for (const auto& g : r.generalErrors) all += g + "\n";
-                   return all;
-                 }()).trimmed());
+    log_->append("error: the run-file is not valid; nothing was started:\n" + QString::fromStdString(describeProblems(r)));
     return false;
   }
   io::RunConfig config = *r.config;

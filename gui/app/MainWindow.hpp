@@ -29,8 +29,10 @@ class MainWindow : public QMainWindow {
   ~MainWindow() override;
 
   /// Opens a run-file into the form (and shows its terrain). Returns false (and logs why) when it
-  /// cannot be read.
-  bool openRunFile(const QString& path);
+  /// cannot be read. `problems`, when given, receives why it cannot be read, or else the problems
+  /// validation found (each naming the file, line and key where it can; "" when valid), so that
+  /// a caller without the window in view (the command line) can report them.
+  bool openRunFile(const QString& path, QString* problems = nullptr);
   /// Validates the form and starts a run; false (errors shown next to their fields) when invalid.
   bool startRun();
   /// Saves the run-file (to `path`, or its own path when empty). Returns "" or the problem.

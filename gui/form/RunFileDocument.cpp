@@ -28,6 +28,9 @@ RunFileDocument::RunFileDocument(const io::KeyRegistry& keys) : keys_(&keys) {
 }
 
 RunFileDocument RunFileDocument::load(const std::string& path, const io::KeyRegistry& keys) {
+  // A folder opens as an empty stream here: say so instead of listing every key as missing.
+  std::error_code ec;
+  if (fs::is_directory(path, ec)) throw InputError("cannot read run-file '" + path + "': it is a folder");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError("cannot read run-file '" + path + "': " + std::strerror(errno));
   std::ostringstream text;

@@ -17,6 +17,13 @@ ValidationResult validateDocument(const RunFileDocument& doc) {
   return r;
 }
 
+std::string describeProblems(const ValidationResult& result) {
+  std::string all;
+  for (const auto& [key, text] : result.fieldErrors) all += (all.empty() ? "" : "\n") + text;
+  for (const auto& g : result.generalErrors) all += (all.empty() ? "" : "\n") + g;
+  return all;
+}
+
 void assignErrors(const std::string& message, const io::KeyRegistry& keys, ValidationResult& result) {
   std::istringstream in(message);
   std::string line;

@@ -21,6 +21,9 @@ struct ValidationResult {
 /// Parses and validates the document's text as RunConfig does for `talus run`.
 ValidationResult validateDocument(const RunFileDocument& doc);
 
+/// Every problem of a result, one per line (field problems first), for the log and the terminal.
+std::string describeProblems(const ValidationResult& result);
+
 /// Adds the problems of an InputError message (one per line) to `result`: a line naming "key 'X'"
 /// of a declared key goes to that field, any other line to the general list.
 void assignErrors(const std::string& message, const io::KeyRegistry& keys, ValidationResult& result);
