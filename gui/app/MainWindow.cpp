@@ -224,7 +224,7 @@ void MainWindow::onPrepared() {
 }
 
 void MainWindow::onSnapshot(std::shared_ptr<const sim::ViewSnapshot> s) {
-  layers_->fitRanges(*s);
+  layers_->setSnapshot(s);
   viewer_->setSnapshot(s);
   plots_->addSnapshot(*s);
   if (hoverI_ >= 0) hover_->setText(hoverText(hoverI_, hoverJ_));

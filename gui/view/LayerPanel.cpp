@@ -21,7 +21,7 @@ QDoubleSpinBox* rangeBox(double value) {
   return b;
 }
 
-/// Smallest and largest finite value (above `above` when given), or false when none.
+/// Smallest and largest finite value (above `above` when given), or false (and 0..1) when none.
 bool valueRange(const std::vector<float>& v, double& lo, double& hi, double above = -HUGE_VAL) {
   lo = HUGE_VAL;
   hi = -HUGE_VAL;
@@ -30,7 +30,27 @@ bool valueRange(const std::vector<float>& v, double& lo, double& hi, double abov
       lo = std::min(lo, double(x));
       hi = std::max(hi, double(x));
     }
-  return lo <= hi;
+  if (lo > hi) {
+    lo = 0;  // no value: the boxes' initial range
+    hi = 1;
+    return false;
+  }
+  return true;
+}
+
+/// Dimensionless shares (solid fraction, cohesion fraction) lie in 0..1 by definition: a fixed
+/// range lets a colour mean the same share in every frame and every run, instead of stretching
+/// whatever spread the flow has now over the whole ramp.
+bool isFraction(const QString& name, const QString& unit) { return unit == "-" && name.contains("fraction"); }
+
+/// Sets an automatic range into its boxes (without their signals); true when that changed them.
+bool setRange(QDoubleSpinBox& min, QDoubleSpinBox& max, double lo, double hi) {
+  if (hi <= lo) hi = lo + 1e-6;  // a flat field still needs a range to colour
+  const double oldMin = min.value(), oldMax = max.value();
+  const QSignalBlocker b1(min), b2(max);
+  min.setValue(lo);
+  max.setValue(hi);
+  return min.value() != oldMin || max.value() != oldMax;  // as the boxes round them
 }
 
 }  // namespace
@@ -91,6 +111,7 @@ LayerPanel::LayerPanel(QWidget* parent) : QWidget(parent) {
   v->addStretch(1);
 
   auto emitChanged = [this] {
+    refitRanges();  // automatic switched on, or another attribute: its range, not the last one
     min_->setEnabled(!autoRange_->isChecked());
     max_->setEnabled(!autoRange_->isChecked());
     pMin_->setEnabled(!pAutoRange_->isChecked());
@@ -111,6 +132,7 @@ LayerPanel::LayerPanel(QWidget* parent) : QWidget(parent) {
 void LayerPanel::setCatalogue(const std::vector<sim::GridLayerInfo>& layers,
                               const std::vector<sim::ParticleAttributeInfo>& attributes) {
   const QString previous = preferred_;
+  snapshot_.reset();  // the previous run's
   layers_ = layers;
   attributes_ = attributes;
   {
@@ -140,6 +162,11 @@ void LayerPanel::selectLayer(const QString& name) {
   if (k >= 0) layer_->setCurrentIndex(k);
 }
 
+void LayerPanel::selectAttribute(const QString& name) {
+  const int k = attribute_->findData(name);
+  if (k >= 0) attribute_->setCurrentIndex(k);
+}
+
 void LayerPanel::onLayerChosen() {
   if (!layer().isEmpty()) preferred_ = layer();
   const QSignalBlocker block(layerRamp_);
@@ -153,6 +180,7 @@ void LayerPanel::onLayerChosen() {
     const QSignalBlocker b2(emptyBelow_);
     emptyBelow_->setValue(!info ? 0.0 : !info->zeroIsEmpty ? -1e12 : unit == "m" ? 0.001 : 1e-6);
   }
+  refitRanges();  // the range of this layer, also when no new snapshot comes (paused or ended run)
   updateLegends();
   emit changed();
 }
@@ -185,46 +213,47 @@ ParticleStyle LayerPanel::particleStyle() const {
   return s;
 }
 
-void LayerPanel::fitRanges(const sim::ViewSnapshot& snapshot) {
-  double lo = 0, hi = 0;
-  bool changedRange = false;
-  if (autoRange_->isChecked()) {
-    if (const std::vector<float>* v = snapshot.layer(layer().toStdString())) {
-      if (valueRange(*v, lo, hi, emptyBelow_->value())) {
-        if (layerUnit() != "s") lo = std::min(lo, 0.0);  // amounts start at zero; times at the first arrival
-        if (hi <= lo) hi = lo + 1e-6;
-        const QSignalBlocker b1(min_), b2(max_);
-        changedRange = changedRange || min_->value() != lo || max_->value() != hi;
-        min_->setValue(lo);
-        max_->setValue(hi);
-      }
-    }
-  }
-  if (pAutoRange_->isChecked()) {
-    const std::string name = attribute_->currentData().toString().toStdString();
-    if (const std::vector<float>* v = snapshot.particleAttribute(name)) {
-      if (valueRange(*v, lo, hi)) {
-        if (hi <= lo) hi = lo + 1e-6;
-        const QSignalBlocker b1(pMin_), b2(pMax_);
-        changedRange = changedRange || pMin_->value() != lo || pMax_->value() != hi;
-        pMin_->setValue(lo);
-        pMax_->setValue(hi);
-      }
-    }
-  }
-  if (changedRange) {
+void LayerPanel::setSnapshot(std::shared_ptr<const sim::ViewSnapshot> snapshot) {
+  snapshot_ = std::move(snapshot);
+  if (refitRanges()) {
     updateLegends();
     emit changed();
   }
 }
 
+void LayerPanel::clear() {
+  setCatalogue({}, {});
+}
+
+bool LayerPanel::refitRanges() {
+  bool changedRange = false;
+  if (autoRange_->isChecked()) {
+    const std::vector<float>* v = snapshot_ ? snapshot_->layer(layer().toStdString()) : nullptr;
+    double lo = 0, hi = 1;
+    if (!isFraction(layer(), layerUnit()) && v && valueRange(*v, lo, hi, emptyBelow_->value()) && layerUnit() != "s")
+      lo = std::min(lo, 0.0);  // amounts start at zero; times at the first arrival
+    changedRange = setRange(*min_, *max_, lo, hi) || changedRange;
+  }
+  if (pAutoRange_->isChecked()) {
+    const QString name = particleStyle().attribute;
+    const std::vector<float>* v = snapshot_ ? snapshot_->particleAttribute(name.toStdString()) : nullptr;
+    double lo = 0, hi = 1;
+    if (!isFraction(name, attributeUnit()) && v) valueRange(*v, lo, hi);
+    changedRange = setRange(*pMin_, *pMax_, lo, hi) || changedRange;
+  }
+  return changedRange;
+}
+
+QString LayerPanel::attributeUnit() const {
+  for (const auto& a : attributes_)
+    if (QString::fromStdString(a.name) == particleStyle().attribute) return QString::fromStdString(a.unit);
+  return {};
+}
+
 void LayerPanel::updateLegends() {
   legend_->setLegend(layer_->currentText().section(" [", 0, 0), layerUnit(), layerRamp(), min_->value(), max_->value());
-  QString unit;
-  for (const auto& a : attributes_)
-    if (QString::fromStdString(a.name) == particleStyle().attribute) unit = QString::fromStdString(a.unit);
   particleLegend_->setLegend(attributes_.empty() ? "particles (none in this run)" : attribute_->currentText().section(" [", 0, 0),
-                             unit, particleRamp(), pMin_->value(), pMax_->value());
+                             attributeUnit(), particleRamp(), pMin_->value(), pMax_->value());
 }
 
 }  // namespace talus::gui

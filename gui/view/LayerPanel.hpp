@@ -7,6 +7,7 @@
 #include <QDoubleSpinBox>
 #include <QSlider>
 #include <QWidget>
+#include <memory>
 #include <vector>
 
 #include "render/TerrainRenderer.hpp"
@@ -26,8 +27,14 @@ class LayerPanel : public QWidget {
   void setCatalogue(const std::vector<sim::GridLayerInfo>& layers, const std::vector<sim::ParticleAttributeInfo>& attributes);
   /// Chooses the layer by name ("" = none); remembered for runs whose catalogue comes later.
   void selectLayer(const QString& name);
-  /// With automatic ranges on, fits them to the values of a new snapshot.
-  void fitRanges(const sim::ViewSnapshot& snapshot);
+  /// Chooses the attribute that colours the particles (ignored when the run has no such attribute).
+  void selectAttribute(const QString& name);
+  /// Keeps the latest snapshot of the run and, with automatic ranges on, fits them to its values.
+  /// The snapshot is kept so that choosing another layer or attribute later (a paused or ended run
+  /// sends no more) fits that one's range instead of keeping the previous one's.
+  void setSnapshot(std::shared_ptr<const sim::ViewSnapshot> snapshot);
+  /// Forgets the catalogue and the snapshot of the previous scene (a run-file was opened).
+  void clear();
 
   QString layer() const;
   QString layerUnit() const;
@@ -35,6 +42,8 @@ class LayerPanel : public QWidget {
   QString layerRamp() const { return layerRamp_->currentText(); }
   ParticleStyle particleStyle() const;
   QString particleRamp() const { return particleRamp_->currentText(); }
+  /// Unit of the attribute colouring the particles ("" when none).
+  QString attributeUnit() const;
 
  signals:
   /// Something the viewer draws changed.
@@ -42,11 +51,15 @@ class LayerPanel : public QWidget {
 
  private:
   void onLayerChosen();
+  /// With automatic ranges on, fits both ranges to the kept snapshot (fractions: 0..1 always);
+  /// true when a range changed. Emits nothing.
+  bool refitRanges();
   void updateLegends();
 
   QString preferred_ = "h";  ///< the layer to show when a new catalogue arrives
   std::vector<sim::GridLayerInfo> layers_;
   std::vector<sim::ParticleAttributeInfo> attributes_;
+  std::shared_ptr<const sim::ViewSnapshot> snapshot_;
   QComboBox *layer_, *layerRamp_, *attribute_, *particleRamp_;
   QDoubleSpinBox *min_, *max_, *emptyBelow_, *pMin_, *pMax_, *pointSize_;
   QCheckBox *autoRange_, *pAutoRange_, *showParticles_;
