@@ -94,10 +94,7 @@ void MainWindow::buildActions() {
   }, QKeySequence("F6"));
   step_ = runMenu->addAction("Single s&tep", this, [this] { run_->step(); }, QKeySequence("F7"));
   stop_ = runMenu->addAction("St&op", this, [this] { run_->stop(); }, QKeySequence("F8"));
-  restart_ = runMenu->addAction("&Restart", this, [this] {
-    plots_->clear();
-    run_->restart();
-  });
+  restart_ = runMenu->addAction("&Restart", this, [this] { restartRun(); });
 
   QMenu* view = menuBar()->addMenu("&View");
   tilted_ = view->addAction("&Tilted 3D view");
@@ -140,7 +137,7 @@ void MainWindow::updateActions() {
   pause_->setText(s == S::Paused ? "Resume" : "Pause");
   step_->setEnabled(s == S::Running || s == S::Paused);
   stop_->setEnabled(active);
-  restart_->setEnabled(s == S::Running || s == S::Paused || s == S::Ended);
+  restart_->setEnabled(doc_ && (s == S::Running || s == S::Paused || s == S::Ended));
   save_->setEnabled(doc_ != nullptr);
   saveAs_->setEnabled(doc_ != nullptr);
   form_->setEnabled(doc_ && !active);
@@ -151,13 +148,21 @@ void MainWindow::updateActions() {
 }
 
 bool MainWindow::openRunFile(const QString& path, QString* problems) {
-  try {
-    doc_ = std::make_unique<RunFileDocument>(RunFileDocument::load(path.toStdString(), talusRunKeys()));
-  } catch (const std::exception& e) {
-    log_->append(QString("error: %1").arg(e.what()));
-    if (problems) *problems = QString::fromStdString(e.what());
+  auto refuse = [&](const QString& why) {
+    log_->append("error: " + why);
+    if (problems) *problems = why;
     return false;
+  };
+  // The run's outputs and viewer belong to the open run-file: another one waits for its end.
+  if (run_->isActive()) return refuse("a run is in progress: stop it before opening " + path);
+  std::unique_ptr<RunFileDocument> doc;
+  try {
+    doc = std::make_unique<RunFileDocument>(RunFileDocument::load(path.toStdString(), talusRunKeys()));
+  } catch (const std::exception& e) {
+    return refuse(e.what());  // the open run-file and its scene stay
   }
+  resetScene();
+  doc_ = std::move(doc);
   form_->setDocument(doc_.get());
   recent_->add(path);
   log_->append("opened " + QFileInfo(path).absoluteFilePath());
@@ -184,13 +189,23 @@ void MainWindow::showTerrainOf(const io::RunConfig& config) {
   }
 }
 
-bool MainWindow::startRun() {
-  if (!doc_) return false;
+void MainWindow::resetScene() {
+  run_->reset();
+  viewer_->clearScene();
+  layers_->clear();
+  plots_->clear();
+  status_->reset();
+  hoverI_ = -1;
+  hover_->clear();
+}
+
+std::optional<io::RunConfig> MainWindow::runConfig() {
+  if (!doc_) return std::nullopt;
   const ValidationResult r = validateDocument(*doc_);
   form_->showErrors(r);
   if (!r.ok()) {
     log_->append("error: the run-file is not valid; nothing was started:\n" + QString::fromStdString(describeProblems(r)));
-    return false;
+    return std::nullopt;
   }
   io::RunConfig config = *r.config;
   if (!outputOverride_.isEmpty()) {
@@ -198,18 +213,38 @@ bool MainWindow::startRun() {
       config.set("Output Directory=" + QFileInfo(outputOverride_).absoluteFilePath().toStdString());
     } catch (const std::exception& e) {
       log_->append(QString("error: %1").arg(e.what()));
-      return false;
+      return std::nullopt;
     }
   }
-  const QString out = QString::fromStdString(config.directory("Output Directory"));
+  return config;
+}
+
+bool MainWindow::confirmReplace(const QString& out, const QString& question) {
+  return !askBeforeOverwrite_ ||
+         QMessageBox::question(this, "Replace results?", "The output folder\n" + out + "\n" + question) == QMessageBox::Yes;
+}
+
+bool MainWindow::startRun() {
+  const std::optional<io::RunConfig> config = runConfig();
+  if (!config) return false;
+  const QString out = QString::fromStdString(config->directory("Output Directory"));
   const bool hasRun = QFileInfo::exists(out + "/summary.json") || QFileInfo::exists(out + "/diagnostics.csv");
-  if (hasRun && askBeforeOverwrite_ &&
-      QMessageBox::question(this, "Replace results?", "The output folder\n" + out +
-                                                          "\nholds the results of an earlier run. Replace them?") !=
-          QMessageBox::Yes)
+  if (hasRun && !confirmReplace(out, "holds the results of an earlier run. Replace them?")) return false;
+  plots_->clear();
+  run_->start(*config, hasRun);
+  return true;
+}
+
+bool MainWindow::restartRun() {
+  if (!restart_->isEnabled()) return false;
+  const std::optional<io::RunConfig> config = runConfig();
+  if (!config) return false;
+  const QString out = QString::fromStdString(config->directory("Output Directory"));
+  if (!confirmReplace(out, run_->isActive() ? "receives the results of the run in progress. Stop it and start again?"
+                                           : "holds the results of the last run. Replace them?"))
     return false;
   plots_->clear();
-  run_->start(config, hasRun);
+  run_->restart(*config);
   return true;
 }
 

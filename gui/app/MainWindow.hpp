@@ -6,6 +6,7 @@
 #include <QLabel>
 #include <QMainWindow>
 #include <memory>
+#include <optional>
 
 #include "export/FrameExporter.hpp"
 #include "form/ParameterForm.hpp"
@@ -35,6 +36,10 @@ class MainWindow : public QMainWindow {
   bool openRunFile(const QString& path, QString* problems = nullptr);
   /// Validates the form and starts a run; false (errors shown next to their fields) when invalid.
   bool startRun();
+  /// Stops the run (if any) and starts the open run-file again, as it is now in the form, after
+  /// asking whether to replace the results (unless setAskBeforeOverwrite(false)). False when not
+  /// restarted (declined, invalid, or no run of this run-file to restart).
+  bool restartRun();
   /// Saves the run-file (to `path`, or its own path when empty). Returns "" or the problem.
   QString saveRunFile(const QString& path = {});
   /// Whether to ask before a run replaces the outputs of an earlier run (off: replace silently).
@@ -47,6 +52,7 @@ class MainWindow : public QMainWindow {
   LayerPanel& layers() { return *layers_; }
   RunController& controller() { return *run_; }
   PlotPanel& plots() { return *plots_; }
+  RunStatusPanel& status() { return *status_; }
   RunFileDocument* document() { return doc_.get(); }
   FrameExporter& exporter() { return exporter_; }
   QString logText() const { return log_->toPlainText(); }
@@ -62,6 +68,13 @@ class MainWindow : public QMainWindow {
   void updateActions();
   void applyLayerStyle();
   void showTerrainOf(const io::RunConfig& config);
+  /// Clears what the previous run-file's scene left: its run, viewer, layers, plots and status.
+  void resetScene();
+  /// The validated configuration of the open run-file (with the output override), or nullopt with
+  /// the errors shown at the fields and in the log.
+  std::optional<io::RunConfig> runConfig();
+  /// Whether replacing the results in `out` is fine (asked unless askBeforeOverwrite_ is off).
+  bool confirmReplace(const QString& out, const QString& question);
   void onPrepared();
   void onSnapshot(std::shared_ptr<const sim::ViewSnapshot> s);
   void onHover(int i, int j, bool inside);

@@ -32,6 +32,8 @@ class TerrainRenderer {
 
   /// Uploads the DEM (NaN outside the domain) and builds the meshes.
   void setTerrain(const Grid& grid, const std::vector<float>& elevation);
+  /// Forgets the terrain: draw() draws nothing until the next setTerrain (its buffers are reused).
+  void clear() { nx_ = ny_ = 0; }
   /// Uploads one layer value per cell (NaN: no value), through `interop`.
   void setLayer(const std::vector<float>& values, ClGlInterop& interop, cl_mem device = nullptr);
   void setRamp(const ColorRamp& ramp);

@@ -43,10 +43,21 @@ void RunController::teardown() {
   scene_.reset();
   snapshotPending_ = false;
   snapshotSteps_ = -1;
+  ++generation_;
+}
+
+void RunController::reset() {
+  if (isActive()) return;
+  teardown();
+  config_.reset();
+  restartConfig_.reset();
+  last_ = {};
+  pending_ = {};
+  setState(State::Idle);
 }
 
 void RunController::start(const io::RunConfig& config, bool overwrite, bool paused) {
-  if (state_ == State::Preparing || state_ == State::Running || state_ == State::Paused) return;
+  if (isActive()) return;
   teardown();
   config_ = std::make_unique<io::RunConfig>(config);
   overwrite_ = overwrite;
@@ -58,7 +69,7 @@ void RunController::start(const io::RunConfig& config, bool overwrite, bool paus
   setState(State::Preparing);
   emit log(QString("loading %1").arg(QString::fromStdString(config.sourceName())));
   // Reading rasters and building kernels takes seconds: do it off the GUI thread.
-  preparer_ = std::thread([this] {
+  preparer_ = std::thread([this, gen = int(generation_)] {
     QString error;
     try {
       auto scene = std::make_unique<sim::Scene>(sim::loadScene(*config_));
@@ -70,7 +81,8 @@ void RunController::start(const io::RunConfig& config, bool overwrite, bool paus
       error = QString::fromUtf8(e.what());
     }
     if (cancelPrepare_) return;
-    QMetaObject::invokeMethod(this, [this, error] {
+    QMetaObject::invokeMethod(this, [this, error, gen] {
+      if (gen != generation_) return;
       if (preparer_.joinable()) preparer_.join();
       if (!error.isEmpty()) {
         setState(State::Idle);
@@ -132,7 +144,8 @@ void RunController::onStep(const sim::Progress& p) {
     if (!paused && p.time < p.endTime && p.wallSeconds - lastEmitWall_ < kEmitInterval) return;
     lastEmitWall_ = p.wallSeconds;
   }
-  QMetaObject::invokeMethod(this, [this] {
+  QMetaObject::invokeMethod(this, [this, gen = int(generation_)] {
+    if (gen != generation_) return;
     RunProgress now;
     {
       std::lock_guard<std::mutex> lock(progressMutex_);
@@ -154,7 +167,8 @@ void RunController::onStep(const sim::Progress& p) {
 }
 
 void RunController::onEnd(const sim::RunOutcome& outcome) {
-  QMetaObject::invokeMethod(this, [this, outcome] {
+  QMetaObject::invokeMethod(this, [this, outcome, gen = int(generation_)] {
+    if (gen != generation_) return;
     {
       std::lock_guard<std::mutex> lock(progressMutex_);
       last_ = pending_;
@@ -181,9 +195,9 @@ void RunController::onEnd(const sim::RunOutcome& outcome) {
     emit log(message);
     setState(State::Ended);
     emit ended(outcome.kind, message);
-    if (restartWhenEnded_) {
-      restartWhenEnded_ = false;
-      const io::RunConfig config = *config_;
+    if (restartConfig_) {
+      const io::RunConfig config = *restartConfig_;
+      restartConfig_.reset();
       start(config, true, false);
     }
   }, Qt::QueuedConnection);
@@ -223,15 +237,15 @@ void RunController::stop() {
   control_->stop();
 }
 
-void RunController::restart() {
-  if (!config_) return;
+void RunController::restart(const io::RunConfig& config) {
   if (state_ == State::Running || state_ == State::Paused) {
-    restartWhenEnded_ = true;
+    // The worker finishes the current step and writes its outputs first; onEnd then starts it.
+    // (config_ stays: the running Simulation reads it.)
+    restartConfig_ = std::make_unique<io::RunConfig>(config);
     control_->stop();
     return;
   }
   if (state_ == State::Preparing) stop();
-  const io::RunConfig config = *config_;
   start(config, true, false);
 }
 
@@ -241,7 +255,8 @@ void RunController::requestSnapshot() {
   control_->post([this](sim::Simulation& sim) {
     auto s = std::make_shared<sim::ViewSnapshot>(view_->snapshot({}, deviceSnapshots_, kGlNoData));
     s->steps = sim.steps();
-    QMetaObject::invokeMethod(this, [this, s] {
+    QMetaObject::invokeMethod(this, [this, s, gen = int(generation_)] {
+      if (gen != generation_) return;
       snapshotPending_ = false;
       snapshotSteps_ = s->steps;
       emit snapshotReady(s);

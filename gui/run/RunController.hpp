@@ -47,8 +47,14 @@ class RunController : public QObject {
   void resume();
   void step();
   void stop();
-  /// Stops the run (if any) and starts the same configuration again, replacing its outputs.
-  void restart();
+  /// Stops the run (if any) and then starts `config` (the open run-file, which may have been edited
+  /// since), replacing the outputs.
+  void restart(const io::RunConfig& config);
+  /// Forgets the run of the previous scene (its scene, device, progress and configuration) and goes
+  /// back to Idle; nothing of it reaches the signals any more. Ignored while a run is active.
+  void reset();
+  /// Whether a run is loading, running or paused.
+  bool isActive() const { return state_ == State::Preparing || state_ == State::Running || state_ == State::Paused; }
   /// Asks for a snapshot of every layer (delivered by snapshotReady); ignored while one is pending.
   void requestSnapshot();
   /// Whether snapshots keep the device copies of the layers packed on the device (for a viewer
@@ -88,8 +94,12 @@ class RunController : public QObject {
   std::unique_ptr<sim::ViewFields> view_;
   std::unique_ptr<sim::RunControl> control_;
   std::thread preparer_;
-  bool overwrite_ = false, startPaused_ = false, restartWhenEnded_ = false;
+  std::unique_ptr<io::RunConfig> restartConfig_;  ///< started when the run being stopped has ended
+  bool overwrite_ = false, startPaused_ = false;
   std::atomic<bool> cancelPrepare_{false};
+  /// Counts teardowns: what the threads queued for the GUI thread carries the count of its run and
+  /// is dropped when that run has been torn down since (another start, or reset).
+  std::atomic<int> generation_{0};
   bool snapshotPending_ = false;
   std::atomic<bool> deviceSnapshots_{false};
   long long snapshotSteps_ = -1;

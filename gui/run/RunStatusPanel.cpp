@@ -34,7 +34,7 @@ RunStatusPanel::RunStatusPanel(QWidget* parent) : QWidget(parent) {
 
 void RunStatusPanel::reset() {
   history_.clear();
-  bar_->setValue(0);
+  bar_->reset();  // no value, so no text (the format holds the last run's percentage)
   time_->clear();
   rate_->clear();
   eta_->clear();

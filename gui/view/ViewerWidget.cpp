@@ -34,6 +34,19 @@ void ViewerWidget::setTerrain(const Grid& grid, std::vector<float> elevation) {
   resetView();
 }
 
+void ViewerWidget::clearScene() {
+  grid_ = Grid{};
+  elevation_.clear();
+  snapshot_.reset();
+  terrainDirty_ = true;
+  // The interop chosen for the old run stays until the next run's setDataSource chooses again;
+  // without a snapshot nothing reaches it meanwhile.
+  device_ = nullptr;
+  clContext_ = nullptr;
+  clQueue_ = nullptr;
+  update();
+}
+
 void ViewerWidget::setDataSource(const compute::DeviceInfo* device, cl_context context, cl_command_queue queue,
                                  const QString& contextNote) {
   device_ = device;
@@ -125,7 +138,11 @@ QVector3D ViewerWidget::worldOrigin() const {
 float ViewerWidget::exaggeration() const { return camera_.mode() == ViewCamera::Mode::Tilted ? 1.0f : 0.0f; }
 
 void ViewerWidget::uploadPending() {
-  if (terrainDirty_ && grid_.nx > 0) {
+  if (terrainDirty_ && grid_.nx == 0) {
+    terrain_->clear();
+    terrainDirty_ = false;
+  }
+  if (terrainDirty_) {
     terrain_->setTerrain(grid_, elevation_);
     terrainDirty_ = false;
     layerDirty_ = true;

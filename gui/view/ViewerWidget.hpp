@@ -42,6 +42,9 @@ class ViewerWidget : public QOpenGLWidget, protected QOpenGLFunctions_3_3_Core {
                      const QString& contextNote = {});
   /// The data to draw from now on (null: terrain only).
   void setSnapshot(std::shared_ptr<const sim::ViewSnapshot> snapshot);
+  /// Forgets the scene: terrain, snapshot and the run's OpenCL queue (which goes with its run), so
+  /// that nothing of a previous run-file stays on screen.
+  void clearScene();
   std::shared_ptr<const sim::ViewSnapshot> snapshot() const { return snapshot_; }
 
   /// The grid layer drawn over the terrain ("" = none) and its style.

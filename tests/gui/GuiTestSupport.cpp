@@ -1,6 +1,10 @@
 #include "GuiTestSupport.hpp"
 
+#include <QAbstractButton>
+#include <QApplication>
 #include <QCoreApplication>
+#include <QMessageBox>
+#include <QTimer>
 #include <QElapsedTimer>
 #include <QThread>
 #include <cmath>
@@ -51,6 +55,27 @@ bool waitFor(const std::function<bool()>& done, double seconds) {
     QThread::msleep(5);
   }
   return true;
+}
+
+std::shared_ptr<QString> answerNextMessageBox(int button, double seconds) {
+  auto seen = std::make_shared<QString>();
+  // The box runs its own event loop (QMessageBox::question blocks): a timer reaches into it.
+  auto* timer = new QTimer;
+  auto clock = std::make_shared<QElapsedTimer>();
+  clock->start();
+  QObject::connect(timer, &QTimer::timeout, [timer, seen, clock, button, seconds] {
+    if (auto* box = qobject_cast<QMessageBox*>(QApplication::activeModalWidget())) {
+      *seen = box->text();
+      if (QAbstractButton* b = box->button(QMessageBox::StandardButton(button))) b->click();
+      else box->reject();
+    } else if (clock->elapsed() < seconds * 1000) {
+      return;
+    }
+    timer->stop();
+    timer->deleteLater();
+  });
+  timer->start(20);
+  return seen;
 }
 
 int distinctColours(const QImage& image) {

@@ -5,6 +5,7 @@
 #include <QString>
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <string>
 
 namespace talus::guitest {
@@ -16,6 +17,9 @@ std::filesystem::path scratchDir(const std::string& name);
 std::string writeExampleRunFile(const std::filesystem::path& dir, const std::string& extraLines = "");
 /// Processes events until `done` is true or `seconds` pass; returns done().
 bool waitFor(const std::function<bool()>& done, double seconds);
+/// Answers the next message box that opens (within `seconds`) with `button`; the returned string
+/// receives the box's text once it was answered (empty while none was).
+std::shared_ptr<QString> answerNextMessageBox(int button, double seconds = 30);
 /// Number of distinct colours of an image.
 int distinctColours(const QImage& image);
 /// Standard deviation of the grey value (0..255) over the image.
