@@ -14,6 +14,7 @@
 #include <cmath>
 
 #include "app/RecentFiles.hpp"
+#include "form/RunFilePaths.hpp"
 #include "core/Error.hpp"
 #include "io/RasterIO.hpp"
 #include "sim/RunKeys.hpp"
@@ -306,10 +307,21 @@ QString MainWindow::saveRunFile(const QString& path) {
   if (!doc_) return "no run-file is open";
   const QString target = path.isEmpty() ? QString::fromStdString(doc_->path()) : path;
   if (target.isEmpty()) return "the run-file has no name yet: use Save as";
+  // Saved elsewhere, the copy's relative input paths are rewritten to find the same maps; the open
+  // document changes only once the copy is written (a failed save leaves it as it was).
+  RunFileDocument copy = *doc_;
+  rebaseInputPaths(copy, QFileInfo(target).absolutePath().toStdString());
+  const bool rewritten = copy.text() != doc_->text();
   try {
-    doc_->save(target.toStdString());
+    copy.save(target.toStdString());
   } catch (const std::exception& e) {
     return e.what();
+  }
+  *doc_ = std::move(copy);
+  if (rewritten) {
+    form_->setDocument(doc_.get());
+    form_->showErrors(validateDocument(*doc_));
+    log_->append("the relative paths of the maps were rewritten for the new folder");
   }
   recent_->add(target);
   log_->append("saved " + target);

@@ -46,6 +46,13 @@ std::string writeExampleRunFile(const fs::path& dir, const std::string& extraLin
   return path;
 }
 
+std::string readText(const fs::path& file) {
+  std::ifstream in(file);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
 bool waitFor(const std::function<bool()>& done, double seconds) {
   QElapsedTimer clock;
   clock.start();

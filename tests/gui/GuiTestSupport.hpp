@@ -15,6 +15,8 @@ std::filesystem::path scratchDir(const std::string& name);
 /// Writes the example scene's run-file into `dir`, maps read from data/kot_dambreak, outputs into
 /// dir/out, with extra "Key=Value" lines replacing those keys. Returns its path.
 std::string writeExampleRunFile(const std::filesystem::path& dir, const std::string& extraLines = "");
+/// The whole content of a text file ("" when it cannot be read).
+std::string readText(const std::filesystem::path& file);
 /// Processes events until `done` is true or `seconds` pass; returns done().
 bool waitFor(const std::function<bool()>& done, double seconds);
 /// Answers the next message box that opens (within `seconds`) with `button`; the returned string
