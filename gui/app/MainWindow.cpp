@@ -78,7 +78,8 @@ void MainWindow::buildActions() {
     const QString problem = saveRunFile();
     if (!problem.isEmpty()) log_->append("error: " + problem);
   }, QKeySequence::Save);
-  saveAs_ = file->addAction("Save &as...", this, &MainWindow::saveAs, QKeySequence::SaveAs);
+  // Spelled out: QKeySequence::SaveAs is empty under some platforms' key schemes (Windows, bare X11).
+  saveAs_ = file->addAction("Save &as...", this, &MainWindow::saveAs, QKeySequence(Qt::CTRL | Qt::SHIFT | Qt::Key_S));
   file->addSeparator();
   shot_ = file->addAction("Export &screenshot (PNG)...", this, &MainWindow::screenshot);
   record_ = file->addAction("Record &frame sequence...");
@@ -386,7 +387,13 @@ void MainWindow::dropEvent(QDropEvent* e) {
 }
 
 void MainWindow::closeEvent(QCloseEvent* e) {
-  if (!confirmDiscard()) {
+  // A run in progress would be cut short by quitting: its outputs are written up to the step it
+  // stops at, but an accidental Ctrl+Q should not end an hour-long run.
+  const bool stopRun = run_->isActive();
+  if (!confirmDiscard() ||
+      (stopRun && QMessageBox::question(this, "Stop the run?",
+                                        "A run is in progress. Stop it (its outputs so far are written) and quit?") !=
+                      QMessageBox::Yes)) {
     e->ignore();
     return;
   }

@@ -64,24 +64,33 @@ bool waitFor(const std::function<bool()>& done, double seconds) {
   return true;
 }
 
-std::shared_ptr<QString> answerNextMessageBox(int button, double seconds) {
-  auto seen = std::make_shared<QString>();
-  // The box runs its own event loop (QMessageBox::question blocks): a timer reaches into it.
+void onNextModal(const std::function<void(QWidget*)>& act, double seconds) {
+  // A modal dialog runs its own event loop (QMessageBox::question, QFileDialog::getSaveFileName
+  // block): a timer reaches into it.
   auto* timer = new QTimer;
   auto clock = std::make_shared<QElapsedTimer>();
   clock->start();
-  QObject::connect(timer, &QTimer::timeout, [timer, seen, clock, button, seconds] {
-    if (auto* box = qobject_cast<QMessageBox*>(QApplication::activeModalWidget())) {
-      *seen = box->text();
-      if (QAbstractButton* b = box->button(QMessageBox::StandardButton(button))) b->click();
-      else box->reject();
-    } else if (clock->elapsed() < seconds * 1000) {
-      return;
-    }
+  QObject::connect(timer, &QTimer::timeout, [timer, clock, act, seconds] {
+    if (QWidget* modal = QApplication::activeModalWidget()) act(modal);
+    else if (clock->elapsed() < seconds * 1000) return;
     timer->stop();
     timer->deleteLater();
   });
   timer->start(20);
+}
+
+std::shared_ptr<QString> answerNextMessageBox(int button, double seconds) {
+  auto seen = std::make_shared<QString>();
+  onNextModal([seen, button](QWidget* modal) {
+    auto* box = qobject_cast<QMessageBox*>(modal);
+    if (!box) {  // not the question expected: close it, the test then fails on what it checks
+      modal->close();
+      return;
+    }
+    *seen = box->text();
+    if (QAbstractButton* b = box->button(QMessageBox::StandardButton(button))) b->click();
+    else box->reject();
+  }, seconds);
   return seen;
 }
 

@@ -3,6 +3,7 @@
 #pragma once
 #include <QImage>
 #include <QString>
+#include <QWidget>
 #include <filesystem>
 #include <functional>
 #include <memory>
@@ -19,6 +20,9 @@ std::string writeExampleRunFile(const std::filesystem::path& dir, const std::str
 std::string readText(const std::filesystem::path& file);
 /// Processes events until `done` is true or `seconds` pass; returns done().
 bool waitFor(const std::function<bool()>& done, double seconds);
+/// Calls `act` with the next modal dialog that opens within `seconds` (from the event loop the
+/// dialog runs), then stops watching.
+void onNextModal(const std::function<void(QWidget*)>& act, double seconds = 30);
 /// Answers the next message box that opens (within `seconds`) with `button`; the returned string
 /// receives the box's text once it was answered (empty while none was).
 std::shared_ptr<QString> answerNextMessageBox(int button, double seconds = 30);
