@@ -9,6 +9,8 @@
 #include <QMenuBar>
 #include <QMessageBox>
 #include <QMimeData>
+#include <QScrollArea>
+#include <QSettings>
 #include <QStatusBar>
 #include <QToolBar>
 #include <cmath>
@@ -20,6 +22,21 @@
 #include "sim/RunKeys.hpp"
 
 namespace talus::gui {
+
+namespace {
+constexpr const char* kGeometryKey = "window/geometry";
+constexpr const char* kStateKey = "window/state";
+constexpr int kLayoutVersion = 1;  ///< raise when the docks change: an older saved layout is ignored
+
+/// A panel in a scroll area, so that its dock can be made smaller than the panel's own minimum.
+QScrollArea* scrollable(QWidget* panel) {
+  auto* area = new QScrollArea;
+  area->setWidget(panel);
+  area->setWidgetResizable(true);
+  area->setFrameShape(QFrame::NoFrame);
+  return area;
+}
+}  // namespace
 
 MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   setWindowTitle("Talus");
@@ -63,6 +80,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   applyLayerStyle();
   updateActions();
   resize(1400, 900);
+  restoreLayout();
 }
 
 MainWindow::~MainWindow() = default;
@@ -121,13 +139,28 @@ void MainWindow::buildDocks() {
     addDockWidget(area, d);
     return d;
   };
-  dock("Parameters", form_, Qt::LeftDockWidgetArea);
-  dock("Layers", layers_, Qt::RightDockWidgetArea);
+  // The form scrolls itself; the layer controls and the plots scroll in their docks, and the log
+  // and the plots share the bottom as tabs, so that the window fits a 1280x800 screen.
+  QDockWidget* formDock = dock("Parameters", form_, Qt::LeftDockWidgetArea);
+  dock("Layers", scrollable(layers_), Qt::RightDockWidgetArea);
+  QDockWidget* plotDock = dock("Plots", scrollable(plots_), Qt::BottomDockWidgetArea);
   QDockWidget* logDock = dock("Log", log_, Qt::BottomDockWidgetArea);
-  QDockWidget* plotDock = dock("Plots", plots_, Qt::BottomDockWidgetArea);
-  splitDockWidget(logDock, plotDock, Qt::Horizontal);
-  resizeDocks({logDock, plotDock}, {500, 700}, Qt::Horizontal);
-  resizeDocks({logDock}, {240}, Qt::Vertical);
+  tabifyDockWidget(plotDock, logDock);
+  plotDock->raise();
+  resizeDocks({formDock}, {420}, Qt::Horizontal);
+  resizeDocks({plotDock}, {260}, Qt::Vertical);
+}
+
+void MainWindow::saveLayout() const {
+  QSettings settings;
+  settings.setValue(kGeometryKey, saveGeometry());
+  settings.setValue(kStateKey, saveState(kLayoutVersion));
+}
+
+void MainWindow::restoreLayout() {
+  const QSettings settings;
+  restoreGeometry(settings.value(kGeometryKey).toByteArray());
+  restoreState(settings.value(kStateKey).toByteArray(), kLayoutVersion);
 }
 
 void MainWindow::updateActions() {
@@ -398,6 +431,7 @@ void MainWindow::closeEvent(QCloseEvent* e) {
     return;
   }
   run_->stop();
+  saveLayout();
   e->accept();
 }
 

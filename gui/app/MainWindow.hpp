@@ -65,6 +65,9 @@ class MainWindow : public QMainWindow {
  private:
   void buildActions();
   void buildDocks();
+  /// Remembers the window's geometry and dock layout (QSettings) for the next launch.
+  void saveLayout() const;
+  void restoreLayout();
   void updateActions();
   void applyLayerStyle();
   void showTerrainOf(const io::RunConfig& config);
