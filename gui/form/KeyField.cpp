@@ -9,6 +9,7 @@
 #include <QLineEdit>
 #include <QToolButton>
 #include <QVBoxLayout>
+#include <tuple>
 
 #include "form/MapPreview.hpp"
 
@@ -22,6 +23,15 @@ bool isNumber(const QString& s) {
   return ok;
 }
 
+constexpr double kPi = 3.14159265358979323846;
+
+/// A number text converted by `factor` (6 significant digits); any other text as it is.
+QString convert(const QString& text, double factor) {
+  bool ok = false;
+  const double v = text.trimmed().toDouble(&ok);
+  return ok && factor != 1 ? QString::number(v * factor, 'g', 6) : text;
+}
+
 }  // namespace
 
 QString KeyField::describe(const io::KeySpec& spec) {
@@ -29,6 +39,8 @@ QString KeyField::describe(const io::KeySpec& spec) {
               QString::fromStdString(io::keyTypeName(spec.type)) + ")<br>" +
               QString::fromStdString(spec.help).toHtmlEscaped();
   if (!spec.unit.empty()) t += "<br>unit: " + QString::fromStdString(spec.unit == "-" ? "dimensionless" : spec.unit);
+  if (const auto [shown, factor] = shownUnit(spec); factor != 1)
+    t += " (the run-file's; typed and shown here in " + shown + (spec.type == io::KeyType::Map ? ", a map file holds " + QString::fromStdString(spec.unit) : "") + ")";
   const std::string range = io::rangeText(spec);
   if (!range.empty()) t += "<br>valid range: " + QString::fromStdString(range);
   if (!spec.choices.empty()) {
@@ -41,7 +53,14 @@ QString KeyField::describe(const io::KeySpec& spec) {
   return t;
 }
 
+std::pair<QString, double> KeyField::shownUnit(const io::KeySpec& spec) {
+  if (spec.unit == "rad") return {"deg", 180 / kPi};
+  if (spec.unit == "kPa") return {"Pa", 1000};
+  return {QString::fromStdString(spec.unit), 1};
+}
+
 KeyField::KeyField(const io::KeySpec& spec, QWidget* parent) : QWidget(parent), spec_(spec) {
+  std::tie(shown_, toShown_) = shownUnit(spec);
   auto* column = new QVBoxLayout(this);
   column->setContentsMargins(0, 0, 0, 0);
   column->setSpacing(2);
@@ -62,15 +81,19 @@ KeyField::KeyField(const io::KeySpec& spec, QWidget* parent) : QWidget(parent), 
       break;
     default:
       line_ = new QLineEdit;
-      line_->setPlaceholderText(spec.required ? "required" : QString::fromStdString(spec.defaultValue));
+      line_->setPlaceholderText(spec.required ? "required" : convert(QString::fromStdString(spec.defaultValue), toShown_));
       row->addWidget(line_, 1);
       connect(line_, &QLineEdit::textEdited, this, [this] {
         refreshPreview();
+        refreshUnit();
         emit edited(value());
       });
       break;
   }
-  if (!spec.unit.empty() && spec.unit != "-") row->addWidget(new QLabel(QString::fromStdString(spec.unit)));
+  if (!spec.unit.empty() && spec.unit != "-") {
+    unit_ = new QLabel(shown_);
+    row->addWidget(unit_);
+  }
   if (spec.type == io::KeyType::Directory || spec.type == io::KeyType::Map) {
     auto* pick = new QToolButton;
     pick->setText("...");
@@ -102,15 +125,37 @@ void KeyField::setValue(const QString& value) {
     if (combo_->findText(v) < 0) combo_->addItem(v);  // an invalid value stays visible next to its error
     combo_->setCurrentText(v);
   } else {
-    line_->setText(value);
+    line_->setText(convert(value, toShown_));
     refreshPreview();
+    refreshUnit();
   }
 }
 
 QString KeyField::value() const {
   if (check_) return check_->isChecked() ? "1" : "0";
   if (combo_) return combo_->currentText();
-  return line_->text();
+  return convert(line_->text(), 1 / toShown_);
+}
+
+QString KeyField::shownText() const { return line_ ? line_->text() : value(); }
+
+void KeyField::typeText(const QString& text) {
+  if (!line_) return;
+  line_->setText(text);
+  emit line_->textEdited(text);
+}
+
+QString KeyField::unitText() const { return unit_ ? unit_->text() : QString(); }
+
+void KeyField::refreshUnit() {
+  // A map file keeps the file's unit; numbers are shown converted.
+  if (unit_ && line_)
+    unit_->setText(line_->text().trimmed().isEmpty() || isNumber(line_->text().trimmed()) ? shown_ : QString::fromStdString(spec_.unit));
+}
+
+void KeyField::setApplies(bool applies, const QString& reason) {
+  setEnabled(applies);
+  setToolTip(applies ? describe(spec_) : describe(spec_) + "<br><i>not used now: " + reason.toHtmlEscaped() + "</i>");
 }
 
 void KeyField::setError(const QString& error) {
