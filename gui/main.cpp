@@ -42,6 +42,7 @@ int main(int argc, char** argv) {
   if (cli.isSet(outOpt)) window.setOutputOverride(cli.value(outOpt));
   const QStringList files = cli.positionalArguments();
   bool valid = true;
+  QString invalid;  // the problems of an invalid run-file, shown in the window too
   if (!files.isEmpty()) {
     // The terminal is where a command line's mistakes are read: a run-file that cannot be read
     // ends here, before any window appears; an invalid one is reported and then opened with its
@@ -52,9 +53,11 @@ int main(int argc, char** argv) {
       return 2;
     }
     valid = problems.isEmpty();
-    if (!valid)
+    if (!valid) {
       std::fprintf(stderr, "talus-gui: run-file '%s' is not valid (the errors are shown at their fields):\n%s\n",
                    qPrintable(files.front()), qPrintable(problems));
+      invalid = problems;
+    }
   }
   window.show();
   if (cli.isSet(tiltedOpt)) window.viewer().setMode(talus::gui::ViewCamera::Mode::Tilted);
@@ -62,9 +65,17 @@ int main(int argc, char** argv) {
   // A picture of a run that cannot start would never be taken: fail instead of waiting forever.
   if (!valid && cli.isSet(captureOpt)) return 2;
   if (cli.isSet(runOpt)) {
-    if (!valid) std::fprintf(stderr, "talus-gui: nothing was started\n");
-    else if (!window.startRun()) return 2;
+    if (!valid) {
+      std::fprintf(stderr, "talus-gui: nothing was started\n");
+      invalid += "\nNothing was started (--run).";
+    } else if (!window.startRun()) {
+      return 2;
+    }
   }
+  // Started from a desktop, nobody reads stderr: the window says it too (without blocking).
+  if (!invalid.isEmpty())
+    window.reportProblems("Run-file not valid", "The run-file '" + files.front() +
+                                                    "' is not valid; the errors are shown at their fields:\n" + invalid);
 
   if (cli.isSet(captureOpt)) {
     const QString spec = cli.value(captureOpt);

@@ -163,6 +163,17 @@ void MainWindow::restoreLayout() {
   restoreState(settings.value(kStateKey).toByteArray(), kLayoutVersion);
 }
 
+QMessageBox* MainWindow::reportProblems(const QString& title, const QString& problems) {
+  for (const QString& line : problems.split('\n'))
+    if (!line.trimmed().isEmpty()) log_->append("error: " + line);
+  if (!reportInDialogs_) return nullptr;
+  auto* box = new QMessageBox(QMessageBox::Warning, title, problems, QMessageBox::Ok, this);
+  box->setAttribute(Qt::WA_DeleteOnClose);
+  box->setTextInteractionFlags(Qt::TextSelectableByMouse);
+  box->open();  // window-modal, without a nested event loop: the program goes on
+  return box;
+}
+
 void MainWindow::updateActions() {
   using S = RunController::State;
   const S s = run_->state();

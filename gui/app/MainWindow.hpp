@@ -5,6 +5,7 @@
 #include <QAction>
 #include <QLabel>
 #include <QMainWindow>
+#include <QMessageBox>
 #include <memory>
 #include <optional>
 
@@ -44,6 +45,12 @@ class MainWindow : public QMainWindow {
   QString saveRunFile(const QString& path = {});
   /// Whether to ask before a run replaces the outputs of an earlier run (off: replace silently).
   void setAskBeforeOverwrite(bool ask) { askBeforeOverwrite_ = ask; }
+  /// Shows problems the user should read now (a command line's invalid run-file): in the log and,
+  /// unless setReportInDialogs(false), in a message box over the window that does not block the
+  /// program (returned; deleted when closed). Returns nullptr when no box was opened.
+  QMessageBox* reportProblems(const QString& title, const QString& problems);
+  /// Whether reportProblems opens a message box (off: tests and scripts without anyone to read it).
+  void setReportInDialogs(bool on) { reportInDialogs_ = on; }
   /// Runs write into `dir` instead of the run-file's Output Directory (as `talus run --out`).
   void setOutputOverride(const QString& dir) { outputOverride_ = dir; }
 
@@ -100,6 +107,7 @@ class MainWindow : public QMainWindow {
   RecentFiles* recent_ = nullptr;
   FrameExporter exporter_;
   bool askBeforeOverwrite_ = true;
+  bool reportInDialogs_ = true;
   QString outputOverride_;
   int hoverI_ = -1, hoverJ_ = -1;
   QAction *open_, *save_, *saveAs_, *start_, *pause_, *step_, *stop_, *restart_, *tilted_, *shot_, *record_;

@@ -3,7 +3,12 @@
 // and opened with the errors at the fields, as File > Open opens it.
 #include <gtest/gtest.h>
 
+#include <QAbstractButton>
+#include <QApplication>
+#include <QMessageBox>
+#include <QPointer>
 #include <QProcess>
+#include <QTest>
 #include <filesystem>
 
 #include "GuiTestSupport.hpp"
@@ -41,6 +46,23 @@ TEST(GuiCommandLine, InvalidRunFileIsReportedOnStderrAndOpenedWithTheErrorsAtThe
   EXPECT_TRUE(err.contains("key 'CFL'") && err.contains("outside the valid range")) << err.toStdString();
   waitFor([] { return false; }, 1.0);
   EXPECT_EQ(gui.state(), QProcess::Running) << "the window closed: " << err.toStdString();
+  // Started from a desktop nobody reads stderr: a message box over the window says it too
+  // (looked for among the display's windows, by its title).
+  QProcess windows;
+  windows.start("xwininfo", {"-root", "-tree"});
+  if (windows.waitForFinished(10000) && windows.exitCode() == 0) {
+    QString tree;
+    waitFor([&] {
+      QProcess again;
+      again.start("xwininfo", {"-root", "-tree"});
+      again.waitForFinished(10000);
+      tree = QString::fromLocal8Bit(again.readAllStandardOutput());
+      return tree.contains("\"Run-file not valid\"");
+    }, 10);
+    EXPECT_TRUE(tree.contains("\"Run-file not valid\"")) << "no message box among the windows:\n" << tree.toStdString();
+  } else {
+    ADD_FAILURE() << "xwininfo (x11-utils) is needed to look for the message box";
+  }
   gui.kill();
   gui.waitForFinished(10000);
 
@@ -53,4 +75,30 @@ TEST(GuiCommandLine, InvalidRunFileIsReportedOnStderrAndOpenedWithTheErrorsAtThe
   QString none;
   ASSERT_TRUE(w.openRunFile(QString::fromStdString(writeExampleRunFile(scratchDir("cli_valid"))), &none));
   EXPECT_TRUE(none.isEmpty()) << none.toStdString();
+}
+
+TEST(GuiCommandLine, ProblemsAreShownInAMessageBoxThatDoesNotBlock) {
+  const QString runFile = QString::fromStdString(writeExampleRunFile(scratchDir("cli_box"), "CFL=5\n"));
+  MainWindow w;
+  w.show();
+  ASSERT_TRUE(QTest::qWaitForWindowExposed(&w));
+  QString problems;
+  ASSERT_TRUE(w.openRunFile(runFile, &problems));
+  ASSERT_FALSE(problems.isEmpty());
+  QMessageBox* box = w.reportProblems("Run-file not valid", problems);
+  ASSERT_NE(box, nullptr);
+  // reportProblems returned with the box open: nothing waits for it to be answered.
+  EXPECT_TRUE(waitFor([&] { return box->isVisible(); }, 5));
+  EXPECT_TRUE(box->text().contains("key 'CFL'")) << box->text().toStdString();
+  EXPECT_EQ(QApplication::activeModalWidget(), box);
+  EXPECT_TRUE(w.logText().contains("error: ")) << w.logText().toStdString();
+  QPointer<QMessageBox> gone(box);
+  box->button(QMessageBox::Ok)->click();
+  EXPECT_TRUE(waitFor([&] { return gone.isNull() || !gone->isVisible(); }, 5)) << "the answered box stays";
+
+  // Switched off (tests, scripts): the log only.
+  w.setReportInDialogs(false);
+  EXPECT_EQ(w.reportProblems("Run-file not valid", problems), nullptr);
+  waitFor([] { return false; }, 0.2);
+  EXPECT_EQ(QApplication::activeModalWidget(), nullptr);
 }
