@@ -17,11 +17,17 @@ int main(int argc, char** argv) {
   QApplication app(argc, argv);
   QApplication::setOrganizationName("TalusTests");
   QApplication::setApplicationName("talus-gui-tests");
-  // Settings (recent files, window layout) go to a scratch folder, emptied at each start, never to
-  // the user's own: every test run starts from no saved layout.
-  const std::filesystem::path settings = std::filesystem::temp_directory_path() / "talus_gui_test_settings";
+  // Settings (recent files, window layout) go to a scratch folder, of its own per run, never to
+  // the user's own: every test run starts from no saved layout. Programs the tests start get their
+  // own (XDG_CONFIG_HOME, test_command_line.cpp).
+  // One folder per test process (ctest -j runs several at once), removed when it ends.
+  const std::filesystem::path settings = std::filesystem::temp_directory_path() /
+      ("talus_gui_test_settings_" + std::to_string(QCoreApplication::applicationPid()));
   std::filesystem::remove_all(settings);
-  QSettings::setDefaultFormat(QSettings::IniFormat);
-  QSettings::setPath(QSettings::IniFormat, QSettings::UserScope, QString::fromStdString(settings.string()));
-  return RUN_ALL_TESTS();
+  // Both formats: Qt's own settings (QFileDialog's history, organisation QtProject) use the native one.
+  for (QSettings::Format f : {QSettings::NativeFormat, QSettings::IniFormat})
+    QSettings::setPath(f, QSettings::UserScope, QString::fromStdString(settings.string()));
+  const int result = RUN_ALL_TESTS();
+  std::filesystem::remove_all(settings);
+  return result;
 }

@@ -18,11 +18,24 @@ using talus::gui::MainWindow;
 using namespace talus::guitest;
 namespace fs = std::filesystem;
 
+namespace {
+
+/// Starts talus-gui with `args`; its settings (recent files, window layout) go to a scratch folder,
+/// not the user's.
+void startGui(QProcess& gui, const QStringList& args) {
+  QProcessEnvironment env = QProcessEnvironment::systemEnvironment();
+  env.insert("XDG_CONFIG_HOME", QString::fromStdString(scratchDir("cli_settings").string()));
+  gui.setProcessEnvironment(env);
+  gui.start(TALUS_GUI_BINARY, args);
+}
+
+}  // namespace
+
 TEST(GuiCommandLine, MissingRunFileIsReportedOnStderrAndExitsNonZero) {
   const fs::path dir = scratchDir("cli_missing");
   const QString missing = QString::fromStdString((dir / "nope.run").string());
   QProcess gui;
-  gui.start(TALUS_GUI_BINARY, {missing});
+  startGui(gui, {missing});
   ASSERT_TRUE(gui.waitForFinished(60000)) << "talus-gui did not end for a missing run-file";
   const QString err = QString::fromLocal8Bit(gui.readAllStandardError());
   EXPECT_EQ(gui.exitStatus(), QProcess::NormalExit);
@@ -35,7 +48,7 @@ TEST(GuiCommandLine, InvalidRunFileIsReportedOnStderrAndOpenedWithTheErrorsAtThe
   const fs::path dir = scratchDir("cli_invalid");
   const QString runFile = QString::fromStdString(writeExampleRunFile(dir, "CFL=5\n"));
   QProcess gui;
-  gui.start(TALUS_GUI_BINARY, {runFile});
+  startGui(gui, {runFile});
   QString err;
   const bool reported = waitFor([&] {
     err += QString::fromLocal8Bit(gui.readAllStandardError());
