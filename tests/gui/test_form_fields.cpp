@@ -5,6 +5,8 @@
 
 #include <QCheckBox>
 #include <QTest>
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 
 #include "GuiTestSupport.hpp"
@@ -143,4 +145,33 @@ TEST(FormFields, AProblemInACollapsedSectionOpensIt) {
   again.openRunFile(QString::fromStdString(writeExampleRunFile(scratchDir("form_section_error2"), "Include Slope Failure=1\n")));
   EXPECT_FALSE(again.form().field("Include Slope Failure")->error().isEmpty());
   EXPECT_TRUE(again.form().sectionExpanded("OpenLISEM Hazard processes and settings"));
+}
+
+TEST(FormFields, CohesionOfTheFormMatchesTheCohesionLayer) {
+  // The form and the cohesion layer of a two-phase run show the same number in the same unit.
+  const fs::path dir = scratchDir("form_cohesion_layer");
+  MainWindow w;
+  w.setAskBeforeOverwrite(false);
+  w.show();
+  ASSERT_TRUE(w.openRunFile(QString::fromStdString(writeExampleRunFile(
+      dir, "Include Initial Solids=1\nInitial Solid Height=water.tif\nInitial Cohesion=2.5\nEnd Time=20\n"))));
+  const KeyField* c = w.form().field("Initial Cohesion");
+  ASSERT_TRUE(w.startRun()) << w.logText().toStdString();
+  talus::gui::RunController& run = w.controller();
+  ASSERT_TRUE(waitFor([&] { return run.lastProgress().steps >= 2; }, 120)) << w.logText().toStdString();
+  run.pause();
+  run.requestSnapshot();
+  ASSERT_TRUE(waitFor([&] { return w.viewer().snapshot() && w.viewer().snapshot()->steps == run.lastProgress().steps; }, 30));
+  w.layers().selectLayer("cohesion");
+  ASSERT_EQ(w.layers().layer(), "cohesion") << "no cohesion layer";
+  EXPECT_EQ(w.layers().layerUnit(), c->unitText());
+  const std::vector<float>* values = w.viewer().snapshot()->layer("cohesion");
+  ASSERT_NE(values, nullptr);
+  float most = 0;
+  for (float v : *values)
+    if (std::isfinite(v)) most = std::max(most, v);
+  EXPECT_NEAR(most, c->shownText().toDouble(), 1e-3 * c->shownText().toDouble()) << "layer " << most << " form "
+                                                                                 << c->shownText().toStdString();
+  run.stop();
+  ASSERT_TRUE(waitFor([&] { return run.state() == talus::gui::RunController::State::Ended; }, 120));
 }
