@@ -13,8 +13,9 @@ packages=(
   libgdal-dev gdal-bin libeigen3-dev
   # desktop application (Qt 5 + OpenGL; Mesa's llvmpipe gives OpenGL 3.3 core without a GPU)
   qtbase5-dev libqt5opengl5-dev libglew-dev libgl1-mesa-dri
-  # tests, headless display for GUI tests (mesa-utils: glxinfo, to check the OpenGL version)
-  libgtest-dev googletest xvfb xauth mesa-utils
+  # tests, headless display for GUI tests (mesa-utils: glxinfo, to check the OpenGL version;
+  # x11-utils: xwininfo, with which a GUI test finds the program's message box)
+  libgtest-dev googletest xvfb xauth mesa-utils x11-utils
   # scene tools (tools/make_example_scene.py)
   python3 python3-numpy python3-gdal
   # fuzzing (tools/fuzz.sh): clang with libFuzzer and the sanitizer runtimes; llvm-symbolizer

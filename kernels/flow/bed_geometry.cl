@@ -3,9 +3,8 @@
 // The same formulas as the host's computeSlopeGravity (src/flow/SlopeGravity.cpp, its CPU reference
 // in tests/kernels/test_bed_geometry.cpp): per axis the minmod of the one-sided bed differences (one
 // side next to outside cells), the slope speed sqrt(g s_max dx) from the steepest one-sided
-// difference, g_n = g cos^2(theta), g_p = g_n or g cos^4(theta) (-DDEPTH_COS4=1), and the curvature
-// as centred differences of the limited slope (a second kernel: it reads the neighbours' slopes).
-// Built with -DSLOPE_CORRECTION=0 the gravities stay g and the curvature zero, as on the host.
+// difference, g_n = g cos^2(theta) and g_p = g_n or g cos^4(theta) (-DDEPTH_COS4=1). Built with
+// -DSLOPE_CORRECTION=0 the gravities stay g, as on the host.
 #include "flow/flow_common.cl"
 
 #ifndef SLOPE_CORRECTION
@@ -54,29 +53,4 @@ __kernel void bed_slope_fields(__constant const FlowParams* p, __global const uc
   gn[k] = GRAVITY * cos2;
   gp[k] = DEPTH_COS4 ? GRAVITY * cos2 * cos2 : GRAVITY * cos2;
 #endif
-}
-
-/// Centred difference of the slope component `f` (one-sided next to outside cells).
-inline real slope_derivative(__constant const FlowParams* p, __global const uchar* mask, __global const real* f, int i,
-                             int j, int di, int dj) {
-  const int m = cell_inside(p, mask, i - di, j - dj), q = cell_inside(p, mask, i + di, j + dj);
-  const real c = f[cell_index(p, i, j)];
-  if (m && q) return (real)0.5 * (f[cell_index(p, i + di, j + dj)] - f[cell_index(p, i - di, j - dj)]) / p->dx;
-  if (q) return (f[cell_index(p, i + di, j + dj)] - c) / p->dx;
-  if (m) return (c - f[cell_index(p, i - di, j - dj)]) / p->dx;
-  return (real)0;
-}
-
-__kernel void bed_curvature_fields(__constant const FlowParams* p, __global const uchar* mask,
-                                   __global const int* tile_list, __global const real* slope, __global real* curv) {
-  const int2 c = tile_cell(p, tile_list);
-  const int i = c.x, j = c.y;
-  if (i >= p->nx || j >= p->ny || !cell_inside(p, mask, i, j)) return;
-  const int n = p->nx * p->ny;
-  const int k = cell_index(p, i, j);
-  __global const real* sx = slope;
-  __global const real* sy = slope + n;
-  curv[k] = slope_derivative(p, mask, sx, i, j, 1, 0);
-  curv[n + k] = (real)0.5 * (slope_derivative(p, mask, sx, i, j, 0, 1) + slope_derivative(p, mask, sy, i, j, 1, 0));
-  curv[2 * n + k] = slope_derivative(p, mask, sy, i, j, 0, 1);
 }

@@ -156,22 +156,32 @@ inline SolidSide solid_side(real h, real z, real un, real ut, real hf, real K, M
   return s;
 }
 
-/// terrain_factor (solid_bed.cl) of cell k with its solid velocity in state S; 1 when the curvature
-/// term is compiled out (Curvature Acceleration off, the default).
-inline real cell_factor(__constant const FlowParams* p, __constant const DebrisParams* dp, __global const real* curv,
-                        __global const real* S, int n, int k) {
-#if DEBRIS_CURVATURE
-  const real hs = S[k];
-  const real u = solid_velocity(hs, S[n + k], p->h_dry, dp->film_h), v = solid_velocity(hs, S[2 * n + k], p->h_dry, dp->film_h);
-  return terrain_factor(curv, n, k, u, v);
-#else
-  return (real)1;
-#endif
+/// The turn onto cell k's tangent plane of solids arriving from cell o (solid_bed.cl, point 1): their
+/// 3-D velocity (u_o, u_o . grad b_o) rotated into the tangent plane of k, its magnitude kept (the
+/// normal impulse of a bed that the material follows). Returns the change of the horizontal velocity
+/// and, in `lift`, u_o . (grad b_k - grad b_o), the change of vertical velocity that staying on the
+/// bed asks (its sign: the bed presses, > 0, or holds the material down, < 0). Grouped so that x <-> y
+/// transposed cells give bitwise the same values.
+inline real2 arrival_turn(__constant const FlowParams* p, __constant const DebrisParams* dp, __global const real* S,
+                          __global const real* fslope, __global const real* gn, int n, int k, int o, real* lift) {
+  const real u = solid_velocity(S[o], S[n + o], p->h_dry, dp->film_h), v = solid_velocity(S[o], S[2 * n + o], p->h_dry, dp->film_h);
+  const real sxk = fslope[k], syk = fslope[n + k], sxo = fslope[o], syo = fslope[n + o];
+  const real d = u * (sxk - sxo) + v * (syk - syo);
+  *lift = d;
+  // The projection onto the tangent plane (normal (-grad b, 1) / sqrt(1 + |grad b|^2)) ...
+  const real c2 = gn[k] / (real)GRAVITY;
+  const real up = u - d * c2 * sxk, vp = v - d * c2 * syk;
+  // ... scaled back to the arriving speed (com1DFA's reprojection keeps it too): the turn itself does
+  // no work, only friction on its normal force does.
+  const real wo = u * sxo + v * syo, wp = up * sxk + vp * syk;
+  const real m2 = (u * u + v * v) + wo * wo, p2 = (up * up + vp * vp) + wp * wp;
+  const real scale = p2 > (real)0 ? sqrt(m2 / p2) : (real)1;
+  return (real2)(scale * up - u, scale * vp - v);
 }
 
 __kernel void debris_stage(__constant const FlowParams* p, __constant const DebrisParams* dp,
                            __global const uchar* mask, __global const int* tile_list, __global const real* b,
-                           __global const real* gp, __global const real* gn, __global const real* curv, __global const real* manning,
+                           __global const real* gp, __global const real* gn, __global const real* manning,
                            __global const real* fslope,
                            __global const real* delta,
                            __global const real* pbed, __global real* impulse,
@@ -197,7 +207,11 @@ __kernel void debris_stage(__constant const FlowParams* p, __constant const Debr
 #if DEBRIS_OBSTACLE
   real beta_lo_dem[2], beta_hi_dem[2];  // the same over the DEM alone (the particles' share of the walls)
 #endif
-  const real fk = cell_factor(p, dp, curv, S_st, n, k), geff = gnk * fk;
+#if DEBRIS_CURVATURE
+  // The turn of the arriving solids (point 1), per direction: the momentum flux it changes (x, y) and
+  // its normal part (the bed's push).
+  real turn_x[2] = {0, 0}, turn_y[2] = {0, 0}, turn[2] = {0, 0};
+#endif
 #if DEBRIS_OBSTACLE
   // Force of the grid phases on the particles of this cell, per unit area and without dt/dx:
   // fluid part per unit fluid density, solid part in kg (times rho_s already).
@@ -248,13 +262,12 @@ __kernel void debris_stage(__constant const FlowParams* p, __constant const Debr
       Kc = earth_pressure(mc.phi, mc.delta, passive_share(own.hi.us - own.lo.us, p->dx, gnk, c0.hs + c0.hf));
       Kp = earth_pressure(mp.phi, mp.delta, passive_share(fp_cell.hi.us - fp_cell.lo.us, p->dx, gn[kp], cp.hs + cp.hf));
     }
-    const real fm = m_in ? cell_factor(p, dp, curv, S_st, n, km) : fk, fp = p_in ? cell_factor(p, dp, curv, S_st, n, kp) : fk;
     const SolidSide smL = solid_side(fm_cell.hi.hs, fm_cell.hi.zb, fm_cell.hi.us, fm_cell.hi.vs, fm_cell.hi.hf, Km, mm,
-                                     gm * fm, gn[km] * fm);
-    const SolidSide smR = solid_side(own.lo.hs, own.lo.zb, own.lo.us, own.lo.vs, own.lo.hf, Kc, mc, g * fk, geff);
-    const SolidSide spL = solid_side(own.hi.hs, own.hi.zb, own.hi.us, own.hi.vs, own.hi.hf, Kc, mc, g * fk, geff);
+                                     gm, gn[km]);
+    const SolidSide smR = solid_side(own.lo.hs, own.lo.zb, own.lo.us, own.lo.vs, own.lo.hf, Kc, mc, g, gnk);
+    const SolidSide spL = solid_side(own.hi.hs, own.hi.zb, own.hi.us, own.hi.vs, own.hi.hf, Kc, mc, g, gnk);
     const SolidSide spR = solid_side(fp_cell.lo.hs, fp_cell.lo.zb, fp_cell.lo.us, fp_cell.lo.vs, fp_cell.lo.hf, Kp, mp,
-                                     gpp * fp, gn[kp] * fp);
+                                     gpp, gn[kp]);
     const int lk = lock_st[k];
     const int lock_m = lk && (!m_in || lock_st[km]), lock_p = lk && (!p_in || lock_st[kp]);
     const SolidFace Sm = solid_face(m_in, smL, 1, smR, kind_m, lock_m);
@@ -283,20 +296,37 @@ __kernel void debris_stage(__constant const FlowParams* p, __constant const Debr
       if (dg != (real)0 && m_in && p_in) sf -= dg * c0.hf * (real)0.5 * (b[kp] - b[km]);
     }
     mass_s[dir] = Sp.fh - Sm.fh;
+#if DEBRIS_CURVATURE
+    // The solids that flow in through each face, with the velocity and bed of the cell they come from.
+    if (m_in && Sm.fh > (real)0) {
+      real lift;
+      const real2 dv = arrival_turn(p, dp, S_st, fslope, gn, n, k, km, &lift);
+      turn_x[dir] += Sm.fh * dv.x;
+      turn_y[dir] += Sm.fh * dv.y;
+      turn[dir] += Sm.fh * lift;
+    }
+    if (p_in && Sp.fh < (real)0) {
+      real lift;
+      const real2 dv = arrival_turn(p, dp, S_st, fslope, gn, n, k, kp, &lift);
+      turn_x[dir] -= Sp.fh * dv.x;
+      turn_y[dir] -= Sp.fh * dv.y;
+      turn[dir] -= Sp.fh * lift;
+    }
+#endif
     // Solid normal momentum: lateral pressure and the bed jumps at the faces (solid_bed.cl), the
-    // bed slope within the cell with g_eff = g_n (g + u^T H u) / g over the reconstructed bed, and
+    // bed slope within the cell with g_n over the reconstructed bed, and
     // buoyancy from the centred gradient of the mixture thickness.
     real ss = (Sp.fqn + Sp.p + Sp.corr_m) - (Sm.fqn + Sm.p + Sm.corr_p);
     if (c0.hs > (real)0) {
       const real rise = own.hi.zb - own.lo.zb;
       // (c0.hs is the mean of the two face thicknesses of the symmetric reconstruction)
       const real hbar = c0.hs;
-      ss += geff * hbar * rise;
+      ss += gnk * hbar * rise;
       const real span = (m_in && p_in) ? (real)0.5 : (real)1;
       ss += mc.gamma * g * c0.hs * span * ((cp.hs + cp.hf) - (cm.hs + cm.hf));
 #if DEBRIS_OBSTACLE
       // The particles' part of the bed force within the cell: all but what the DEM alone exerts.
-      react_s[dir] += mc.rho_s * geff * hbar * (rise - bed_rise(b[km], m_in, b[k], b[kp], p_in));
+      react_s[dir] += mc.rho_s * gnk * hbar * (rise - bed_rise(b[km], m_in, b[k], b[kp], p_in));
 #endif
     }
 #if DEBRIS_OBSTACLE
@@ -351,6 +381,13 @@ __kernel void debris_stage(__constant const FlowParams* p, __constant const Debr
   dS[1] = -dtdx * (norm_s[0] + tang_s[1]);
   dS[2] = -dtdx * (norm_s[1] + tang_s[0]);
   for (int c = 0; c < NSCALAR; ++c) dS[3 + c] = -dtdx * (sc_flux[c][0] + sc_flux[c][1]);
+#if DEBRIS_CURVATURE
+  // The bed's impulse that turns the arriving solids onto this cell's tangent plane (point 1): per
+  // unit area dt/dx sum_in F (u_turned - u_o).
+  dS[1] += dtdx * (turn_x[0] + turn_x[1]);
+  dS[2] += dtdx * (turn_y[0] + turn_y[1]);
+  const real turn_dt = dtdx * (turn[0] + turn[1]);
+#endif
 
   // RK combination.
   real Sn[NSOLID];
@@ -406,8 +443,15 @@ __kernel void debris_stage(__constant const FlowParams* p, __constant const Debr
     BasalColumn col;
     col.h_st = S_st[k];
     col.h = hsn;
-    col.n_g = ((real)1 - dp->pore_b * mn.gamma) * geff;
-    col.g_n = geff;
+#if DEBRIS_CURVATURE
+    // The turn's normal force adds to the weight on the bed (centripetal normal stress at concave
+    // bends), averaged over the step; where it pulls (convex) the bed carries less, never below zero.
+    const real gload = gnk * fmax((real)0, (real)1 + turn_dt / (hsn * dt * (real)GRAVITY));
+#else
+    const real gload = gnk;
+#endif
+    col.n_g = ((real)1 - dp->pore_b * mn.gamma) * gload;
+    col.g_n = gload;
     col.cos_t = sqrt(gnk / (real)GRAVITY);
     col.stretch = along_bed_stretch(rx, ry, fslope[k], fslope[n + k]);
     col.rho = mn.rho_s;

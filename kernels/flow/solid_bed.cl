@@ -3,18 +3,27 @@
 // whose two sides stand on different beds.
 //
 // 1. Terrain-following gravity. In horizontal coordinates a mass point that follows the bed
-//    z = b(x, y) with horizontal velocity u has the vertical acceleration u.grad(u.grad b), so the
-//    bed's normal reaction per unit mass is lambda = (g + u^T H u) / (1 + |grad b|^2), H the Hessian of
-//    b, and its horizontal acceleration -lambda grad b (Denlinger & Iverson 2004, J. Geophys. Res.
-//    109, F01014, eq. 9-10, in horizontal coordinates; the bead on a surface, exact for K = 0). The
-//    basal normal stress, and with it the Coulomb friction and the lateral earth pressure, carry the
-//    same factor (Savage & Hutter 1991, Acta Mech. 86, eq. 3.9: centripetal normal stress at concave
-//    bends). g_n = g cos^2(theta) is the plane value; `terrain_factor` is (g + u^T H u) / g, >= 0
-//    (a mass thrown off a convex edge is in free fall: no normal stress). With it the model
-//    conserves the true mechanical energy (u^2 + (u.grad b)^2) / 2 + g b of a frictionless bead.
-//    Off by default (`Curvature Acceleration`, FlowSettings::curvature: the curvature field is then
-//    zero): on a rough real DEM the centred curvature at high speed rectifies the DEM's noise (zero
-//    normal stress on convex spots, a multiple of g on concave ones) and fast thin layers gain energy.
+//    z = b(x, y) with horizontal velocity u has the vertical velocity w = u.grad b and the vertical
+//    acceleration kappa = u.grad(u.grad b), so the bed's normal reaction per unit mass is
+//    lambda = (g + kappa) / (1 + |grad b|^2) and its horizontal acceleration -lambda grad b
+//    (Denlinger & Iverson 2004, J. Geophys. Res. 109, F01014, eq. 9-10, in horizontal coordinates;
+//    the bead on a surface, exact for K = 0). The plane part g_n = g cos^2(theta) acts as the bed
+//    force of the reconstructed bed (point 2) and its faces (point 3). The curvature part is taken
+//    along the path the material actually takes (debris_stage.cl, `Curvature Acceleration`): over a
+//    step the solids that flow into a cell through a face (mass F dt / dx per unit area) arrive moving
+//    along their own cell's bed, with vertical velocity u_o.grad b_o, and the bed turns them onto this
+//    cell's tangent plane, u_o.grad b_k. That normal impulse, (dt/dx) sum_in F u_o.(grad b_k - grad b_o)
+//    along the bed normal (horizontal part -grad b_k / (1 + |grad b_k|^2) per unit of vertical
+//    velocity), is the projection of the arriving 3-D velocity onto the tangent plane: kappa to first
+//    order on a smooth bed, and never a gain of kinetic energy on a rough one. (The centred Hessian
+//    u^T H u of each cell's own velocity, the form before, rectified a real DEM's noise: no normal
+//    force on convex spots, a multiple of g on concave ones, and thin layers at 230 m/s on avaKot.)
+//    The impulse is signed: material that a convex edge would throw off is held on the bed (its
+//    energy kept as vertical kinetic energy). The basal normal stress, and with it the basal friction,
+//    carries the turn where it presses (centripetal normal stress at concave bends, Savage & Hutter
+//    1991, Acta Mech. 86, eq. 3.9), never below zero. The lateral pressure keeps g_n: the turn is
+//    an impulse on the arriving material, not a lasting load of the column (with it, thin margin
+//    cells that the flow crosses each step pushed their neighbours at tens of g).
 // 2. The reconstructed bed. Per axis the bed is linear in each cell with the minmod slope of its two
 //    one-sided differences (the one-sided difference next to outside cells), whatever the solids in
 //    and around the cell: a plane is exact, and a DEM step, a pit rim or a kink is a jump of the
@@ -42,13 +51,6 @@
 #define TALUS_FLOW_SOLID_BED_CL
 #include "flow/riemann.cl"
 
-/// (g + u^T H u) / g >= 0 for cell k with velocity (u, v); curv holds b_xx, b_xy, b_yy (3 n values).
-inline real terrain_factor(__global const real* curv, int n, int k, real u, real v) {
-  // grouped so that x <-> y transposed cells give bitwise the same value
-  const real c = (curv[k] * u * u + curv[2 * n + k] * v * v) + (real)2 * curv[n + k] * (u * v);
-  return fmax((real)0, (real)1 + c / (real)GRAVITY);
-}
-
 /// Change of the reconstructed bed across cell c (plus face minus minus face) along one axis, from
 /// the beds of its neighbours (bm, bp; m_in, p_in: inside the domain).
 inline real bed_rise(real bm, int m_in, real bc, real bp, int p_in) {
@@ -60,7 +62,7 @@ inline real bed_rise(real bm, int m_in, real bc, real bp, int p_in) {
 
 /// One side of a solid face: face thickness h, face bed z, normal and tangential
 /// velocity, the lateral pressure Pi(h') = max(0, a (h' + hf) - c0) for any thickness h' of the side,
-/// and g_eff = g_n * terrain_factor of its cell (for the drop force).
+/// and g_eff = g_n of its cell (for the drop force and the run-up height).
 typedef struct {
   real h, z, un, ut;
   real a, c0, hf;

@@ -1,5 +1,5 @@
 // Terrain forces and the symplectic update of the particles (spec §5): bed-slope gravity -g_n grad b
-// (horizontal projection, as the grid model, with the bed's curvature in g_n as there), basal Coulomb friction tan(delta) (1 - B gamma) g_n
+// (horizontal projection, as the grid model, with the curvature of the particle's path in g_n as there), basal Coulomb friction tan(delta) (1 - B gamma) g_n
 // applied implicitly (it stops a particle but never reverses it; gamma = rho_f / rho_c where the
 // grid's free fluid stands at the particle (`fluid_depth`, from G2P), 0 for dry particles: buoyancy
 // and pore pressure reduce the effective normal stress, P.39), then
@@ -44,7 +44,7 @@ inline real face_rise(__constant const ParticleParams* p, __global const uchar* 
 
 __kernel void particle_integrate(__constant const ParticleParams* p, __global const uchar* mask,
                                  __global const real* bed, __global const real* grad_x, __global const real* grad_y,
-                                 __global const real* gn, __global const real* curv, __global const real* lslope,
+                                 __global const real* gn, __global const real* lslope,
                                  __global real* x, __global real* y, __global real* vx, __global real* vy,
                                  __global real* m, __global const real* delta, __global const real* ax,
                                  __global const real* ay, __global real* A, __global const real* divergence,
@@ -68,22 +68,37 @@ __kernel void particle_integrate(__constant const ParticleParams* p, __global co
   }
   const real xi = x[i], yi = y[i];
   // Terrain-following gravity (kernels/flow/solid_bed.cl, point 1; Denlinger & Iverson 2004): the
-  // bed's normal reaction per unit mass is g_n (g + v^T H v) / g, H the bed's curvature, in the
-  // bed-slope force and in the basal friction alike.
-#if PARTICLE_CURVATURE
-  const int ncell = p->nx * p->ny;
-  const real u0 = vx[i], v0 = vy[i];
-  const real cv = (terrain_sample(p, curv, xi, yi) * u0 * u0 + terrain_sample(p, curv + 2 * ncell, xi, yi) * v0 * v0) +
-                  (real)2 * terrain_sample(p, curv + ncell, xi, yi) * (u0 * v0);
-  const real g = terrain_sample(p, gn, xi, yi) * fmax((real)0, (real)1 + cv / (real)GRAVITY);
-#else
-  const real g = terrain_sample(p, gn, xi, yi);  // (Curvature Acceleration off: compiled out)
-#endif
+  // particle moved along the tangent plane where it was, x - dt v, and the bed turns it onto the
+  // tangent plane where it now is: its 3-D velocity (v, v . grad b(x - dt v)) is rotated into the new
+  // plane with its speed kept, as the grid's arriving solids are (debris_stage.cl, arrival_turn; the
+  // centred Hessian v^T H v sampled at the particle turned a rough DEM's noise into speed). The
+  // turn's normal force, v . (grad b(x) - grad b(x - dt v)) / dt, adds to the weight in the basal
+  // friction (centripetal normal stress at concave bends), never below zero.
   const real bx = terrain_sample(p, grad_x, xi, yi), by = terrain_sample(p, grad_y, xi, yi);
-  real ux = vx[i] + dt * (ax[i] - g * bx), uy = vy[i] + dt * (ay[i] - g * by);
+  const real g = terrain_sample(p, gn, xi, yi);
+#if PARTICLE_CURVATURE
+  real u0 = vx[i], v0 = vy[i];
+  real gload = g;
+  {
+    const real xb = xi - dt * u0, yb = yi - dt * v0;
+    const real bxb = terrain_sample(p, grad_x, xb, yb), byb = terrain_sample(p, grad_y, xb, yb);
+    const real d = u0 * (bx - bxb) + v0 * (by - byb);
+    const real c2 = g / (real)GRAVITY;
+    const real up = u0 - d * c2 * bx, vp = v0 - d * c2 * by;
+    const real wo = u0 * bxb + v0 * byb, wp = up * bx + vp * by;
+    const real m2 = (u0 * u0 + v0 * v0) + wo * wo, p2 = (up * up + vp * vp) + wp * wp;
+    const real scale = p2 > (real)0 ? sqrt(m2 / p2) : (real)1;
+    u0 = scale * up;
+    v0 = scale * vp;
+    if (dt > (real)0) gload = g * fmax((real)0, (real)1 + d / (dt * (real)GRAVITY));
+  }
+#else
+  const real u0 = vx[i], v0 = vy[i], gload = g;  // (Curvature Acceleration off: compiled out)
+#endif
+  real ux = u0 + dt * (ax[i] - g * bx), uy = v0 + dt * (ay[i] - g * by);
   const real speed = sqrt(ux * ux + uy * uy);
   const real gamma = fluid_depth[i] > (real)1e-6 ? p->rho_f / rho[i] : (real)0;
-  const real stop = dt * tan(delta[i]) * g * fmax((real)0, (real)1 - p->pore_b * gamma);
+  const real stop = dt * tan(delta[i]) * gload * fmax((real)0, (real)1 - p->pore_b * gamma);
   if (speed <= stop) {
     ux = uy = 0;
   } else {

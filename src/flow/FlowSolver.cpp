@@ -126,8 +126,6 @@ void FlowSolver::setInput(const FlowInput& in, double startTime) {
   maxSlopeSpeed_ = 0;
   for (std::size_t k = 0; k < n; ++k)
     if (in.mask[k]) maxSlopeSpeed_ = std::max(maxSlopeSpeed_, sg.slopeSpeed[k]);
-  if (settings_.twoPhase)
-    curvature_.upload(settings_.curvature ? sg.curvature : std::vector<double>(sg.curvature.size(), 0.0));
   h_.upload(h);
   // Momentum of dry and outside cells is discarded, as the update does after every stage.
   auto momentum = [&](const std::vector<double>& q, const char* what) {
@@ -303,7 +301,7 @@ std::vector<char> FlowSolver::saveState() const {
   // Entrainment changes the bed and with it every slope field: all of them are state.
   if (settings_.entrainment.enabled)
     fields.insert(fields.end(), {&erodible_.raw(), &bedChange_.raw(), &bed_.raw(), &gn_.raw(), &gp_.raw(),
-                                 &slopeSpeed_.raw(), &bedSlope_.raw(), &curvature_.raw()});
+                                 &slopeSpeed_.raw(), &bedSlope_.raw()});
   std::vector<char> bytes;
   for (const compute::RawBuffer* f : fields) {
     const std::size_t at = bytes.size();
@@ -319,7 +317,7 @@ void FlowSolver::restoreState(const std::vector<char>& bytes, double time) {
   if (settings_.twoPhase) fields.insert(fields.end(), {&solid0_.raw(), &maxima_.raw(), &lock0_.raw()});
   if (settings_.entrainment.enabled)
     fields.insert(fields.end(), {&erodible_.raw(), &bedChange_.raw(), &bed_.raw(), &gn_.raw(), &gp_.raw(),
-                                 &slopeSpeed_.raw(), &bedSlope_.raw(), &curvature_.raw()});
+                                 &slopeSpeed_.raw(), &bedSlope_.raw()});
   std::size_t total = 0;
   for (const compute::RawBuffer* f : fields) total += f->bytes();
   if (bytes.size() != total)

@@ -151,11 +151,10 @@ class FlowSolver {
   bool entrainment() const { return settings_.entrainment.enabled; }
   /// Recomputes the bed's slope fields on the device over every tile (as after a bed change; for
   /// tests of kernels/flow/bed_geometry.cl against flow/SlopeGravity.cpp): g_n, g_p, the slope
-  /// speed, the bed slope (2 n) and, with the curvature term on, the curvature (3 n).
+  /// speed and the bed slope (2 n).
   void recomputeBedGeometry();
   std::vector<double> slopeSpeed() const { return slopeSpeed_.download(); }
   std::vector<double> bedSlope() const { return bedSlope_.download(); }
-  std::vector<double> curvature() const;
 
  private:
   void enqueueStage(const compute::RealBuffer& hSt, const compute::RealBuffer& qxSt, const compute::RealBuffer& qySt,
@@ -210,14 +209,13 @@ class FlowSolver {
   // the step and after stage 1, static-solid flags, static maps, maxima.
   compute::RawBuffer debrisParams_;
   compute::RealBuffer solid0_, solid1_, delta_, maxima_;
-  compute::RealBuffer curvature_;  ///< bed curvature b_xx, b_xy, b_yy (flow/SlopeGravity.hpp)
   compute::RealBuffer particleBed_, bedImpulse_;
   compute::Buffer<uint8_t> lock0_, lock1_;
   compute::Kernel debrisStage_, debrisTrack_, debrisDiagnostics_;
   // Entrainment: erodible depth left and bed change (per cell), the erodible volume left [m^3].
   compute::RealBuffer erodible_, bedChange_;
   compute::Buffer<int> erodedFlag_;  ///< set by the entrainment kernel where it took anything
-  compute::Kernel entrain_, bedSlopeFields_, bedCurvatureFields_;
+  compute::Kernel entrain_, bedSlopeFields_;
   double erodibleVolume_ = 0;
   compute::Kernel stage_, friction_, track_, diagnostics_, compact_, sources_;
   /// Global range covering the active tiles: one work-group of kTile x kTile per tile.

@@ -32,7 +32,6 @@ void FlowSolver::buildEntrainment() {
                            " -DDEPTH_COS4=" + (settings_.depthPressure == DepthPressure::Cos4 ? "1" : "0");
   entrain_ = compute::Kernel(ctx_.program("flow/entrainment.cl", opts), "debris_entrain");
   bedSlopeFields_ = compute::Kernel(ctx_.program("flow/bed_geometry.cl", opts), "bed_slope_fields");
-  bedCurvatureFields_ = compute::Kernel(ctx_.program("flow/bed_geometry.cl", opts), "bed_curvature_fields");
 }
 
 void FlowSolver::setEntrainmentInput(const FlowInput& in) {
@@ -65,10 +64,6 @@ void FlowSolver::enqueueEntrainment(double dt) {
 void FlowSolver::enqueueBedGeometry() {
   bedSlopeFields_.bind(params_, mask_, tileList_, bed_, gn_, gp_, slopeSpeed_, bedSlope_);
   bedSlopeFields_.launch(tileRange(), kLocal2D, "bed_slope_fields");
-  if (settings_.curvature && settings_.slopeCorrection) {
-    bedCurvatureFields_.bind(params_, mask_, tileList_, bedSlope_, curvature_);
-    bedCurvatureFields_.launch(tileRange(), kLocal2D, "bed_curvature_fields");
-  }
 }
 
 void FlowSolver::recomputeBedGeometry() {
@@ -84,10 +79,6 @@ std::vector<double> FlowSolver::bedChange() const {
 
 std::vector<double> FlowSolver::erodibleDepth() const {
   return settings_.entrainment.enabled ? erodible_.download() : std::vector<double>(grid_.cells(), 0.0);
-}
-
-std::vector<double> FlowSolver::curvature() const {
-  return settings_.twoPhase ? curvature_.download() : std::vector<double>(3 * grid_.cells(), 0.0);
 }
 
 }  // namespace talus::flow

@@ -38,7 +38,6 @@ SlopeGravity computeSlopeGravity(const Grid& grid, const std::vector<double>& be
   s.slopeSpeed.assign(n, 0.0);
   s.slopeX.assign(n, 0.0);
   s.slopeY.assign(n, 0.0);
-  s.curvature.assign(3 * n, 0.0);
   for (int j = 0; j < grid.ny; ++j)
     for (int i = 0; i < grid.nx; ++i) {
       const std::size_t k = grid.index(i, j);
@@ -58,24 +57,6 @@ SlopeGravity computeSlopeGravity(const Grid& grid, const std::vector<double>& be
       const double cos2 = 1.0 / (1.0 + (bx * bx + by * by));  // grouped: x<->y symmetric bitwise
       s.gn[k] = kGravity * cos2;
       s.gp[k] = settings.depthPressure == DepthPressure::Cos4 ? kGravity * cos2 * cos2 : s.gn[k];
-    }
-  if (!settings.slopeCorrection) return s;
-  // Curvature: centred differences of the limited slope (one-sided next to outside cells).
-  auto derivative = [&](const std::vector<double>& f, int i, int j, int di, int dj) {
-    const bool m = insideCell(grid, mask, i - di, j - dj), p = insideCell(grid, mask, i + di, j + dj);
-    const double c = f[grid.index(i, j)];
-    if (m && p) return 0.5 * (f[grid.index(i + di, j + dj)] - f[grid.index(i - di, j - dj)]) / grid.dx;
-    if (p) return (f[grid.index(i + di, j + dj)] - c) / grid.dx;
-    if (m) return (c - f[grid.index(i - di, j - dj)]) / grid.dx;
-    return 0.0;
-  };
-  for (int j = 0; j < grid.ny; ++j)
-    for (int i = 0; i < grid.nx; ++i) {
-      const std::size_t k = grid.index(i, j);
-      if (!mask[k]) continue;
-      s.curvature[k] = derivative(s.slopeX, i, j, 1, 0);
-      s.curvature[n + k] = 0.5 * (derivative(s.slopeX, i, j, 0, 1) + derivative(s.slopeY, i, j, 1, 0));
-      s.curvature[2 * n + k] = derivative(s.slopeY, i, j, 0, 1);
     }
   return s;
 }

@@ -1,12 +1,11 @@
-// Slope-corrected gravity per cell (spec §1) and the bed curvature the solids' gravity needs:
-//  - g_n = g cos^2(theta) for bed-slope gravity and basal normal stress, g_p for the depth-pressure
-//    terms (g cos^2 by default, g cos^4 as an option), cos^2(theta) = 1 / (1 + |grad b|^2);
-//  - the bed's curvature tensor (Hessian of b), with which the solid stage adds the vertical
-//    acceleration of material that follows curved terrain (kernels/flow/debris_gravity.cl).
+// Slope-corrected gravity per cell (spec §1): g_n = g cos^2(theta) for bed-slope gravity and basal
+// normal stress, g_p for the depth-pressure terms (g cos^2 by default, g cos^4 as an option),
+// cos^2(theta) = 1 / (1 + |grad b|^2). (The bed's curvature enters the solids along their path,
+// from the change of this slope between cells: kernels/flow/solid_bed.cl, point 1.)
 // grad b is the bed slope the solids' reconstruction uses: per axis the minmod of the two one-sided
 // differences (the one-sided difference next to nodata cells and the raster edge), so a plane has its
 // exact slope, and a cell beside a DEM step is flat (the step itself is a face of the reconstructed
-// bed, a wall to the material below it). The Hessian is the centred difference of that slope.
+// bed, a wall to the material below it).
 #pragma once
 #include <cstdint>
 #include <vector>
@@ -24,9 +23,6 @@ struct SlopeGravity {
   std::vector<double> slopeSpeed;
   /// Bed slope b_x, b_y per cell (limited, see above) [-].
   std::vector<double> slopeX, slopeY;
-  /// Bed curvature per cell, 3 n values: b_xx (cells 0..n-1), b_xy (n..2n-1), b_yy (2n..3n-1) [1/m];
-  /// all zero when the slope correction is off (plain g, no terrain-following gravity).
-  std::vector<double> curvature;
 };
 
 SlopeGravity computeSlopeGravity(const Grid& grid, const std::vector<double>& bed, const std::vector<uint8_t>& mask,

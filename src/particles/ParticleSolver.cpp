@@ -40,33 +40,6 @@ void bedGradient(const Grid& g, const std::vector<double>& bed, const std::vecto
     }
 }
 
-/// Curvature b_xx, b_xy, b_yy per cell (3 n values) from the bed gradient fields: centred
-/// differences (one-sided next to outside cells), b_xy the mean of d(b_x)/dy and d(b_y)/dx; zero
-/// in nodata cells. The particles' terrain-following gravity (particle_integrate.cl) uses it.
-std::vector<double> bedCurvature(const Grid& g, const std::vector<uint8_t>& mask, const std::vector<double>& gx,
-                                 const std::vector<double>& gy) {
-  const std::size_t n = g.cells();
-  std::vector<double> c(3 * n, 0.0);
-  auto valid = [&](int i, int j) { return i >= 0 && j >= 0 && i < g.nx && j < g.ny && mask[g.index(i, j)]; };
-  auto diff = [&](const std::vector<double>& f, int i, int j, int di, int dj) {
-    const bool m = valid(i - di, j - dj), p = valid(i + di, j + dj);
-    const double f0 = f[g.index(i, j)];
-    if (m && p) return (f[g.index(i + di, j + dj)] - f[g.index(i - di, j - dj)]) / (2 * g.dx);
-    if (p) return (f[g.index(i + di, j + dj)] - f0) / g.dx;
-    if (m) return (f0 - f[g.index(i - di, j - dj)]) / g.dx;
-    return 0.0;
-  };
-  for (int j = 0; j < g.ny; ++j)
-    for (int i = 0; i < g.nx; ++i) {
-      if (!valid(i, j)) continue;
-      const std::size_t k = g.index(i, j);
-      c[k] = diff(gx, i, j, 1, 0);
-      c[n + k] = 0.5 * (diff(gx, i, j, 0, 1) + diff(gy, i, j, 1, 0));
-      c[2 * n + k] = diff(gy, i, j, 0, 1);
-    }
-  return c;
-}
-
 template <class Real>
 void fillParams(compute::RawBuffer& buf, const Grid& g, const ParticleSettings& s, double h, std::size_t count,
                 double soundSpeed, double wSpacing) {
@@ -148,9 +121,6 @@ ParticleSolver::ParticleSolver(compute::Context& ctx, const Grid& grid, const Pa
     ls.insert(ls.end(), sg.slopeY.begin(), sg.slopeY.end());
     limitedSlope_.upload(ls);
   }
-  curvature_ = compute::RealBuffer(ctx, 3 * n, "particle bed curvature");
-  curvature_.upload(terrain.slopeCorrection && terrain.curvature ? bedCurvature(grid, terrain.mask, gx, gy)
-                                                                 : std::vector<double>(3 * n, 0.0));  // unread when off
   gn_.upload(gn);
   gnHost_ = gn;
   params_ = compute::RawBuffer(ctx, sizeof(ParticleParamsT<double>), "particle parameters");
@@ -448,7 +418,7 @@ void ParticleSolver::subStep(double ds) {
   forces_.bind(params_, ng.params(), ng.cellStart(), ng.cellEnd(), x_, y_, vx_, vy_, m_, A_, rhoA_, Nxx_, Nyy_, Nxy_, Minv_,
                ax_, ay_);
   forces_.launch(global, kParticleGroup, "particle_forces");
-  integrate_.bind(params_, mask_, bed_, gradX_, gradY_, gn_, curvature_, limitedSlope_, x_, y_, vx_, vy_, m_, delta_, ax_, ay_, A_, div_, V_, rho_, Vf_,
+  integrate_.bind(params_, mask_, bed_, gradX_, gradY_, gn_, limitedSlope_, x_, y_, vx_, vy_, m_, delta_, ax_, ay_, A_, div_, V_, rho_, Vf_,
                   Vf0_, coh_, coh0_, released_, fluidDepth_, outMass_, compute::RealArg{ds});
   integrate_.launch(global, kParticleGroup, "particle_integrate");
   diag_.outflowMass += reducer_.sum(outMass_, count_);

@@ -153,7 +153,7 @@ class ParticleSolver {
   compute::Reducer reducer_;
   compute::RawBuffer params_;
   compute::Buffer<uint8_t> mask_;
-  compute::RealBuffer bed_, gradX_, gradY_, gn_, curvature_, limitedSlope_;
+  compute::RealBuffer bed_, gradX_, gradY_, gn_, limitedSlope_;
   // Particle fields (reordered together at every neighbour build).
   compute::RealBuffer x_, y_, vx_, vy_, m_, rho_, phi_, delta_, coh_, coh0_, sxx_, syy_, sxy_, plastic_, A_, V_, fsc0_, ffc0_;
   compute::RealBuffer Vf_, Vf0_, released_, fluidDepth_;

@@ -1,8 +1,8 @@
 // The bed's slope fields recomputed on the device (kernels/flow/bed_geometry.cl, after entrainment
 // changed the bed) against the host computation they replace (flow/SlopeGravity.cpp, which every
-// run uses at setInput): g_n, g_p, the slope speed, the limited bed slope and the curvature, on a
+// run uses at setInput): g_n, g_p, the slope speed and the limited bed slope, on a
 // rough random DEM with nodata holes and a nodata column, for the slope correction on (cos^4 depth
-// pressure, so g_p differs from g_n; curvature on) and off. In double the two evaluate the same expressions in the
+// pressure, so g_p differs from g_n) and off. In double the two evaluate the same expressions in the
 // same order (hypot and sqrt correctly rounded or within an ulp on PoCL): we allow 1e-13 relative to
 // the field's scale. In float the device rounds each operation (~10 per field) to 6e-8: 2e-6. A wrong
 // stencil, sign or missing cos^2 changes a field by O(1) of its scale.
@@ -61,7 +61,6 @@ TEST_P(BedGeometryTest, DeviceMatchesHost) {
     s.twoPhase = true;
     s.entrainment.enabled = true;
     s.slopeCorrection = variant == 0;
-    s.curvature = variant == 0;
     s.depthPressure = flow::DepthPressure::Cos4;  // g_p differs from g_n
     SCOPED_TRACE("variant " + std::to_string(variant));
     std::vector<double> bed = in.bed;
@@ -77,7 +76,6 @@ TEST_P(BedGeometryTest, DeviceMatchesHost) {
     EXPECT_LE(relativeDiff(solver.gp(), host.gp, in.mask, 1), tol);
     EXPECT_LE(relativeDiff(solver.slopeSpeed(), host.slopeSpeed, in.mask, 1), tol);
     EXPECT_LE(relativeDiff(solver.bedSlope(), slope, in.mask, 2), tol);
-    if (s.curvature) EXPECT_LE(relativeDiff(solver.curvature(), host.curvature, in.mask, 3), tol);
     // The host's fields are not trivially zero here.
     EXPECT_GT(*std::max_element(host.slopeSpeed.begin(), host.slopeSpeed.end()), 5.0);
   }
