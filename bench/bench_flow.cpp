@@ -109,6 +109,7 @@ void benchTwoPhase(const std::string& device, compute::Precision prec, int size,
     flow::Rheology rheology = flow::Rheology::Coulomb;
     std::array<double, 4> rheo{};
     bool entrainment = false;
+    bool curvature = false;
   };
   const double kTan21 = 0.3839, kTan31 = 0.5938;
   const Variant variants[] = {{"drag off", flow::DragLaw::Off, false},
@@ -126,7 +127,10 @@ void benchTwoPhase(const std::string& device, compute::Precision prec, int size,
                               {"drag off, herschel-bulkley n 1/3", flow::DragLaw::Off, false, false,
                                flow::Rheology::HerschelBulkley, {1000, 100, 1.0 / 3.0, 0}},
                               {"drag off, coulomb + entrainment", flow::DragLaw::Off, false, false,
-                               flow::Rheology::Coulomb, {}, true}};
+                               flow::Rheology::Coulomb, {}, true},
+                              // The bed's curvature along the solids' path (kernels/flow/solid_bed.cl, point 1).
+                              {"drag off, curvature", flow::DragLaw::Off, false, false, flow::Rheology::Coulomb, {},
+                               false, true}};
   for (const Variant& v : variants) {
     flow::FlowSettings settings;
     settings.edge = flow::Boundary::Wall;
@@ -141,6 +145,7 @@ void benchTwoPhase(const std::string& device, compute::Precision prec, int size,
     settings.debris.rheologyParams = v.rheo;
     settings.entrainment.enabled = v.entrainment;
     settings.entrainment.growthRate = 0.01;
+    settings.curvature = v.curvature;
     flow::FlowInput input = in;
     if (v.entrainment) input.erodible.assign(g.cells(), 1.0);
     flow::FlowSolver solver(*ctx, g, settings);

@@ -867,6 +867,9 @@ StressScene makeDebrisScene(uint64_t seed) {
     d.dragMultiplier = u < 0.35 ? 1e-3 : u < 0.7 ? 1e6 : r.logUniform(1e-3, 1e6);
   }
   d.virtualMass = r.chance(0.5);
+  // The bed's curvature along the material's path, on slope-corrected scenes (from the seed's bits, so
+  // the random stream, and with it every other draw of the scene, is the same as without it).
+  s.curvature = s.slopeCorrection && ((seed >> 11) & 1u);
   d.earthPressure = r.chance(0.5) ? flow::EarthPressure::SavageHutter : flow::EarthPressure::Constant;
   {
     const double u = r.unit();
@@ -933,7 +936,7 @@ StressScene makeDebrisScene(uint64_t seed) {
   static const char* modeNames[] = {"solids only", "fluid only", "mixture", "mixture+pure cells"};
   desc << "debrisSeed=" << seed << " family=Debris steps=" << sc.steps << " | two-phase: drag="
        << dragNames[static_cast<int>(d.drag)] << " dragMultiplier=" << fmt("%.3g", d.dragMultiplier)
-       << " virtualMass=" << (d.virtualMass ? 1 : 0) << " earthPressure="
+       << " virtualMass=" << (d.virtualMass ? 1 : 0) << " curvature=" << (s.curvature ? 1 : 0) << " earthPressure="
        << (d.earthPressure == flow::EarthPressure::Constant ? "constant K=" + fmt("%.3g", d.kConst) : std::string("savage-hutter"))
        << " poreB=" << fmt("%.3g", d.poreB) << " rhoF=" << fmt("%.4g", d.fluidDensity)
        << " phi=" << (phiField ? std::string("field 10-45") : fmt("%.1f", phi0)) << " delta="
