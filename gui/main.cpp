@@ -4,11 +4,13 @@
 // Output Directory; --overwrite replaces earlier results without asking;
 // --results opens a finished output folder of `talus run` for replay (time slider, maps, plots);
 // --capture-at saves a picture of the whole window once the simulated time reaches SECONDS (or the
-// run ends) and quits (used for the README screenshot under Xvfb).
+// run ends; with --results: the first series frame at or after SECONDS) and quits (used for the
+// README screenshot under Xvfb).
 #include <QApplication>
 #include <QCommandLineParser>
 #include <QSurfaceFormat>
 #include <QTimer>
+#include <algorithm>
 #include <cstdio>
 
 #include "render/GlSetup.hpp"
@@ -103,6 +105,18 @@ int main(int argc, char** argv) {
       window.grab().save(path, "PNG");
       QApplication::quit();
     };
+    if (window.results() && !cli.isSet(runOpt)) {
+      // Replaying results: the first frame at or after SECONDS (the last when none is).
+      talus::gui::ReplayBar& bar = window.replayBar();
+      int frame = bar.frameCount() - 1;
+      for (int k = 0; k < bar.frameCount(); ++k)
+        if (window.results()->frameTime(k) >= at) {
+          frame = k;
+          break;
+        }
+      bar.setFrame(std::max(frame, 0));
+      QTimer::singleShot(800, &window, capture);
+    }
     QObject::connect(&window.controller(), &talus::gui::RunController::snapshotReady, &window,
                      [&window, at, capture](std::shared_ptr<const talus::sim::ViewSnapshot> s) {
                        // Let the viewer draw the snapshot before the picture is taken.
