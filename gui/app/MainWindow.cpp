@@ -91,6 +91,7 @@ void MainWindow::buildActions() {
   QMenu* file = menuBar()->addMenu("&File");
   open_ = file->addAction("&Open run-file...", this, &MainWindow::chooseAndOpen, QKeySequence::Open);
   openResults_ = file->addAction("Open res&ults...", this, &MainWindow::chooseAndOpenResults);
+  compareResults_ = file->addAction("Co&mpare with results...", this, &MainWindow::chooseAndCompareResults);
   recent_ = new RecentFiles(file->addMenu("Open &recent"), this);
   connect(recent_, &RecentFiles::chosen, this, [this](const QString& f) {
     if (confirmDiscard()) openRunFile(f);
@@ -199,6 +200,7 @@ void MainWindow::updateActions() {
   form_->setEnabled(doc_ && !active);
   open_->setEnabled(!active);
   openResults_->setEnabled(!active);
+  compareResults_->setEnabled(results_ != nullptr);
   QString title = "Talus";
   if (results_)
     title = "results " + results_->folder().dir + (results_->folder().isPartial() ? " (partial)" : "") + " - Talus";

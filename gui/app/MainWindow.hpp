@@ -43,6 +43,11 @@ class MainWindow : public QMainWindow {
   /// folder is missing, not a Talus output (no summary.json) or has nothing readable. A run that did
   /// not complete opens as partial: true, and `problems` says so.
   bool openResults(const QString& dir, QString* problems = nullptr);
+  /// Compares the opened results with those in `dir` (same grid): a difference layer "NAME-diff"
+  /// (opened minus `dir`) joins the layer list for each map and series both hold. False (the
+  /// reason in the log and in `problems`) when no results are open or `dir` cannot be opened or
+  /// is on another grid.
+  bool compareResults(const QString& dir, QString* problems = nullptr);
   /// The opened output folder (nullptr when none is open).
   ResultsReplay* results() { return results_.get(); }
   ReplayBar& replayBar() { return *replay_; }
@@ -103,6 +108,7 @@ class MainWindow : public QMainWindow {
   void onHover(int i, int j, bool inside);
   void chooseAndOpen();
   void chooseAndOpenResults();
+  void chooseAndCompareResults();
   /// Shows series frame `frame` of the opened results.
   void showResultsFrame(int frame);
   void saveAs();
@@ -128,7 +134,7 @@ class MainWindow : public QMainWindow {
   bool reportInDialogs_ = true;
   QString outputOverride_;
   int hoverI_ = -1, hoverJ_ = -1;
-  QAction *open_, *openResults_, *save_, *saveAs_, *start_, *pause_, *step_, *stop_, *restart_, *tilted_, *shot_, *record_;
+  QAction *open_, *openResults_, *compareResults_, *save_, *saveAs_, *start_, *pause_, *step_, *stop_, *restart_, *tilted_, *shot_, *record_;
 };
 
 }  // namespace talus::gui

@@ -1,11 +1,19 @@
 // MainWindow's replay of a finished output folder (File > Open results, talus-gui --results DIR).
 #include <QFileDialog>
 #include <QFileInfo>
+#include <algorithm>
 
 #include "app/MainWindow.hpp"
 #include "results/DiagnosticsTable.hpp"
+#include "results/ResultsComparison.hpp"
 
 namespace talus::gui {
+
+namespace {
+bool lists(const std::vector<sim::GridLayerInfo>& layers, const std::string& name) {
+  return std::any_of(layers.begin(), layers.end(), [&](const sim::GridLayerInfo& l) { return l.name == name; });
+}
+}  // namespace
 
 bool MainWindow::openResults(const QString& dir, QString* problems) {
   auto refuse = [&](const QString& why) {
@@ -29,7 +37,7 @@ bool MainWindow::openResults(const QString& dir, QString* problems) {
   const std::vector<sim::GridLayerInfo>& all = results_->layers();
   QString preferred = f.series.empty() ? QString() : f.series.front().name;
   for (const char* name : {"hfmax", "hsmax", "htmax"})
-    if (preferred.isEmpty() && std::any_of(all.begin(), all.end(), [&](const auto& l) { return l.name == name; }))
+    if (preferred.isEmpty() && lists(all, name))
       preferred = name;
   if (!preferred.isEmpty()) layers_->selectLayer(preferred);
   replay_->setFrames(f.frameTimes);
@@ -62,6 +70,31 @@ bool MainWindow::openResults(const QString& dir, QString* problems) {
   return true;
 }
 
+bool MainWindow::compareResults(const QString& dir, QString* problems) {
+  auto refuse = [&](const QString& why) {
+    log_->append("error: cannot compare: " + why);
+    if (problems) *problems = why;
+    return false;
+  };
+  if (!results_) return refuse("no results are open (File > Open results first)");
+  try {
+    results_->compareWith(std::make_unique<ResultsReplay>(ResultsFolder::open(dir)));
+  } catch (const std::exception& e) {
+    return refuse(e.what());  // the results shown stay as they were
+  }
+  const std::vector<sim::GridLayerInfo>& all = results_->layers();
+  const QString shown = layers_->layer();
+  layers_->setCatalogue(all, results_->particleAttributes());
+  const std::string difference = differenceLayerName(shown.toStdString());
+  if (lists(all, difference)) layers_->selectLayer(QString::fromStdString(difference));
+  showResultsFrame(replay_->frame());
+  log_->append(QString("comparing with the results in %1: %2 difference layers (opened minus compared)")
+                   .arg(results_->comparison()->folder().dir)
+                   .arg(results_->differenceCount()));
+  if (problems) problems->clear();
+  return true;
+}
+
 void MainWindow::showResultsFrame(int frame) {
   if (!results_) return;
   const auto s = results_->snapshot(frame);
@@ -76,6 +109,13 @@ void MainWindow::chooseAndOpenResults() {
   QString problems;
   if (!openResults(dir, &problems) || !problems.isEmpty())
     showMessageBox(results_ ? "Partial results" : "Cannot open results", problems);  // the log has it already
+}
+
+void MainWindow::chooseAndCompareResults() {
+  const QString dir = QFileDialog::getExistingDirectory(this, "Compare with results (another Talus output folder)");
+  if (dir.isEmpty()) return;
+  QString problems;
+  if (!compareResults(dir, &problems)) showMessageBox("Cannot compare results", problems);  // the log has it
 }
 
 }  // namespace talus::gui

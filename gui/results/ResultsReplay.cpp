@@ -1,5 +1,6 @@
 #include "results/ResultsReplay.hpp"
 
+#include <QFileInfo>
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -7,6 +8,7 @@
 #include "core/Raster.hpp"
 #include "io/ParticleLayerIO.hpp"
 #include "io/RasterIO.hpp"
+#include "results/ResultsComparison.hpp"
 #include "results/ResultsLayerNames.hpp"
 
 namespace talus::gui {
@@ -44,6 +46,7 @@ ResultsReplay::ResultsReplay(ResultsFolder folder) : folder_(std::move(folder)) 
   if (grid_.nx == 0)
     throw std::runtime_error(("no map of the results folder '" + folder_.dir + "' could be read").toStdString());
   if (elevation_.empty()) elevation_.assign(grid_.cells(), 0.0f);
+  ownLayers_ = layers_.size();
   // The particle fields, from the first layer written.
   QString first = folder_.particlesFinal;
   for (const QString& f : folder_.particleFrames)
@@ -129,7 +132,38 @@ std::shared_ptr<const sim::ViewSnapshot> ResultsReplay::snapshot(int frame) {
                                 ? folder_.particleFrames[static_cast<std::size_t>(frame)]
                                 : folder_.particlesFinal;
   if (!particles.isEmpty()) addParticles(*s, particles);
+  if (other_) {
+    // The other run's frame at the same report time; without one its series have no values here.
+    int otherFrame = hasFrames ? -1 : 0;
+    for (int k = 0; hasFrames && k < other_->frameCount(); ++k)
+      if (std::abs(other_->frameTime(k) - s->time) <= 1e-6 * std::max(1.0, std::abs(s->time))) otherFrame = k;
+    if (otherFrame >= 0) {
+      addDifferenceLayers(*s, *other_->snapshot(otherFrame));
+    } else {
+      sim::ViewSnapshot mapsOnly;
+      mapsOnly.layerNames = other_->mapNames_;
+      mapsOnly.layers = other_->mapValues_;
+      for (const ResultsSeries& series : other_->folder_.series) {
+        mapsOnly.layerNames.push_back(series.name.toStdString());
+        mapsOnly.layers.emplace_back(grid_.cells(), NAN);
+      }
+      addDifferenceLayers(*s, mapsOnly);
+    }
+  }
   return s;
+}
+
+void ResultsReplay::compareWith(std::unique_ptr<ResultsReplay> other) {
+  if (!sameGrid(other->grid_, grid_))
+    throw std::runtime_error(("the results in '" + other->folder_.dir + "' are on another grid than those in '" +
+                              folder_.dir + "': they cannot be compared").toStdString());
+  other->other_.reset();  // a comparison of the other run is not this one's
+  other->layers_.resize(other->ownLayers_);
+  other_ = std::move(other);
+  layers_.resize(ownLayers_);
+  const std::vector<sim::GridLayerInfo> own(layers_.begin(), layers_.end());
+  const QString otherName = QFileInfo(other_->folder_.dir).fileName();
+  for (sim::GridLayerInfo& d : differenceCatalogue(own, other_->layers_, otherName)) layers_.push_back(std::move(d));
 }
 
 }  // namespace talus::gui

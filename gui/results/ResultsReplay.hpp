@@ -33,6 +33,13 @@ class ResultsReplay {
   /// The snapshot of frame `frame` (clamped into range; without frames: the folder's maps and final
   /// particles). Reads the frame's files.
   std::shared_ptr<const sim::ViewSnapshot> snapshot(int frame);
+  /// Compares with another opened folder from now on: the difference layers of the maps and series
+  /// both hold join the catalogue (ResultsComparison). Throws std::runtime_error naming both
+  /// folders when their grids differ.
+  void compareWith(std::unique_ptr<ResultsReplay> other);
+  const ResultsReplay* comparison() const { return other_.get(); }
+  /// Number of difference layers in layers() (0 without a comparison).
+  std::size_t differenceCount() const { return layers_.size() - ownLayers_; }
   /// What was left out (unreadable maps, another grid, missing DEM).
   const QStringList& warnings() const { return warnings_; }
 
@@ -49,6 +56,8 @@ class ResultsReplay {
   std::vector<std::string> mapNames_;          ///< the folder's maps, read once
   std::vector<std::vector<float>> mapValues_;
   QStringList warnings_;
+  std::size_t ownLayers_ = 0;  ///< layers_ before the differences
+  std::unique_ptr<ResultsReplay> other_;
 };
 
 }  // namespace talus::gui

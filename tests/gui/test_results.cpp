@@ -188,3 +188,49 @@ TEST(OpenResults, TheCommandLineRefusesAFolderThatIsNoOutput) {
   const QString err = QString::fromLocal8Bit(gui.readAllStandardError());
   EXPECT_TRUE(err.contains("'" + folder + "' is not a Talus output folder")) << err.toStdString();
 }
+
+TEST(CompareResults, DifferenceLayersHoldTheOpenedRunMinusTheComparedOne) {
+  const fs::path a = writeResults(scratchDir("compare_a"));
+  // The same scene with another roughness: the flow differs, the grid is the same.
+  const fs::path dirB = scratchDir("compare_b");
+  const std::string runFile = writeExampleRunFile(dirB, "End Time=0.05\nTimestep=1\nReport Series=1\nManning=0.2\n");
+  const io::RunConfig config = io::RunConfig::load(runFile, sim::talusRunKeys());
+  sim::Simulation(sim::loadScene(config), config, (dirB / "out").string(), sim::OutputMode::New).run();
+  const fs::path b = dirB / "out";
+
+  MainWindow w;
+  w.setReportInDialogs(false);
+  w.show();
+  QString problems;
+  EXPECT_FALSE(w.compareResults(QString::fromStdString(b.string()), &problems));  // nothing open yet
+  EXPECT_TRUE(problems.contains("no results are open")) << problems.toStdString();
+  ASSERT_TRUE(w.openResults(QString::fromStdString(a.string())));
+  EXPECT_FALSE(w.compareResults(QString::fromStdString((dirB / "none").string()), &problems));
+  EXPECT_TRUE(problems.contains("does not exist")) << problems.toStdString();
+  EXPECT_FALSE(w.layers().layerNames().contains("hfmax-diff"));
+  ASSERT_TRUE(w.compareResults(QString::fromStdString(b.string()), &problems)) << problems.toStdString();
+  const QStringList names = w.layers().layerNames();
+  for (const char* layer : {"hfmax-diff", "vfmax-diff", "hffinal-diff", "tarrival-diff", "hf-diff", "vf-diff"})
+    EXPECT_TRUE(names.contains(layer)) << layer << " not in " << names.join(", ").toStdString();
+  EXPECT_EQ(w.layers().layer(), "hf-diff");  // the difference of the layer shown
+  EXPECT_TRUE(w.logText().contains("comparing with the results in")) << w.logText().toStdString();
+
+  // Independently: a - b where either has a value and not both are 0.
+  auto expected = [](const fs::path& fa, const fs::path& fb) {
+    const std::vector<float> va = rasterValues(fa), vb = rasterValues(fb);
+    std::vector<float> d(va.size(), NAN);
+    for (std::size_t k = 0; k < d.size(); ++k)
+      if (std::isfinite(va[k]) && std::isfinite(vb[k]) && (va[k] != 0 || vb[k] != 0)) d[k] = va[k] - vb[k];
+    return d;
+  };
+  const std::vector<float> maxDiff = expected(a / "hfmax.tif", b / "hfmax.tif");
+  ASSERT_TRUE(w.viewer().snapshot()->layer("hfmax-diff"));
+  EXPECT_EQ(differences(*w.viewer().snapshot()->layer("hfmax-diff"), maxDiff), 0u);
+  std::size_t differing = 0;
+  for (float v : maxDiff) differing += std::isfinite(v) && v != 0 ? 1 : 0;
+  EXPECT_GT(differing, 100u) << "the two runs should differ";
+  w.replayBar().slider().setValue(2);
+  ASSERT_TRUE(w.viewer().snapshot()->layer("hf-diff"));
+  EXPECT_EQ(differences(*w.viewer().snapshot()->layer("hf-diff"),
+                        expected(a / "series" / "hf_0002.tif", b / "series" / "hf_0002.tif")), 0u);
+}
