@@ -7,6 +7,7 @@
 
 #include <QProcess>
 #include <QTest>
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -15,6 +16,7 @@
 #include "GuiTestSupport.hpp"
 #include "app/MainWindow.hpp"
 #include "core/Raster.hpp"
+#include "io/ParticleLayerIO.hpp"
 #include "io/RasterIO.hpp"
 #include "io/RunConfig.hpp"
 #include "sim/RunKeys.hpp"
@@ -233,4 +235,39 @@ TEST(CompareResults, DifferenceLayersHoldTheOpenedRunMinusTheComparedOne) {
   ASSERT_TRUE(w.viewer().snapshot()->layer("hf-diff"));
   EXPECT_EQ(differences(*w.viewer().snapshot()->layer("hf-diff"),
                         expected(a / "series" / "hf_0002.tif", b / "series" / "hf_0002.tif")), 0u);
+}
+
+TEST(OpenResults, ParticleLayersAreDrawnAtTheirFrame) {
+  // The block slide (hybrid mode: particles), 1.2 s with a report every 0.5 s: 3 particle frames.
+  io::RunConfig config = io::RunConfig::load(std::string(TALUS_TEST_DATA_DIR) + "/block_slide/block_slide.run",
+                                             sim::talusRunKeys());
+  for (const char* set : {"End Time=0.02", "Timestep=0.5", "Report Series=1"}) config.set(set);
+  const fs::path out = scratchDir("results_particles") / "out";
+  sim::Simulation(sim::loadScene(config), config, out.string(), sim::OutputMode::New).run();
+  ASSERT_TRUE(fs::exists(out / "particles" / "particles_0002.gpkg"));
+
+  MainWindow w;
+  w.setReportInDialogs(false);
+  w.show();
+  ASSERT_TRUE(w.openResults(QString::fromStdString(out.string())));
+  const auto& attributes = w.results()->particleAttributes();
+  ASSERT_TRUE(std::any_of(attributes.begin(), attributes.end(), [](const auto& a) { return a.name == "speed"; }));
+  for (int frame : {2, 0}) {
+    w.replayBar().slider().setValue(frame);
+    const auto s = w.viewer().snapshot();
+    const io::ParticleLayer layer =
+        io::readParticleLayer((out / "particles" / ("particles_000" + std::to_string(frame) + ".gpkg")).string());
+    ASSERT_GT(layer.size(), 0u);
+    ASSERT_EQ(s->particleCount, layer.size()) << "frame " << frame;
+    const std::vector<float>* speed = s->particleAttribute("speed");
+    ASSERT_TRUE(speed && layer.find("speed"));
+    std::size_t wrong = 0;
+    for (std::size_t p = 0; p < layer.size(); ++p) {
+      wrong += float(layer.worldX[p]) == s->particlePositions[3 * p] ? 0 : 1;
+      wrong += float(layer.worldY[p]) == s->particlePositions[3 * p + 1] ? 0 : 1;
+      const float v = float((*layer.find("speed"))[p]);
+      wrong += (v == (*speed)[p] || (std::isnan(v) && std::isnan((*speed)[p]))) ? 0 : 1;
+    }
+    EXPECT_EQ(wrong, 0u) << "frame " << frame;
+  }
 }
