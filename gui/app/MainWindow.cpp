@@ -445,7 +445,12 @@ void MainWindow::dropEvent(QDropEvent* e) {
   const auto urls = e->mimeData()->urls();
   if (urls.isEmpty() || !urls.front().isLocalFile()) return;
   if (run_->state() == RunController::State::Running || run_->state() == RunController::State::Paused) return;
-  if (confirmDiscard()) openRunFile(urls.front().toLocalFile());
+  const QString path = urls.front().toLocalFile();
+  if (QFileInfo(path).isDir()) {  // an output folder: its results
+    openResultsReporting(path);
+    return;
+  }
+  if (confirmDiscard()) openRunFile(path);
 }
 
 void MainWindow::closeEvent(QCloseEvent* e) {

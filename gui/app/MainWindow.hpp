@@ -109,6 +109,8 @@ class MainWindow : public QMainWindow {
   void chooseAndOpen();
   void chooseAndOpenResults();
   void chooseAndCompareResults();
+  /// openResults, with a message box for a refusal or partial results.
+  void openResultsReporting(const QString& dir);
   /// Shows series frame `frame` of the opened results.
   void showResultsFrame(int frame);
   void saveAs();

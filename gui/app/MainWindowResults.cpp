@@ -106,9 +106,13 @@ void MainWindow::showResultsFrame(int frame) {
 void MainWindow::chooseAndOpenResults() {
   const QString dir = QFileDialog::getExistingDirectory(this, "Open results (a Talus output folder)");
   if (dir.isEmpty()) return;
+  openResultsReporting(dir);
+}
+
+void MainWindow::openResultsReporting(const QString& dir) {
   QString problems;
   if (!openResults(dir, &problems) || !problems.isEmpty())
-    showMessageBox(results_ ? "Partial results" : "Cannot open results", problems);  // the log has it already
+    showMessageBox(results_ ? "Partial results" : "Cannot open results", problems);  // the log has it
 }
 
 void MainWindow::chooseAndCompareResults() {

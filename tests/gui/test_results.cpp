@@ -5,7 +5,10 @@
 // hold an incomplete run are reported naming the folder.
 #include <gtest/gtest.h>
 
+#include <QDropEvent>
+#include <QMimeData>
 #include <QProcess>
+#include <QUrl>
 #include <QTest>
 #include <algorithm>
 #include <cmath>
@@ -270,4 +273,23 @@ TEST(OpenResults, ParticleLayersAreDrawnAtTheirFrame) {
     }
     EXPECT_EQ(wrong, 0u) << "frame " << frame;
   }
+}
+
+/// The window's drop handler, called as the window system's drop calls it.
+struct DropTarget : MainWindow {
+  using MainWindow::dropEvent;
+};
+
+TEST(OpenResults, DroppingAnOutputFolderOnTheWindowOpensIt) {
+  const fs::path out = writeResults(scratchDir("results_drop"));
+  DropTarget w;
+  w.setReportInDialogs(false);
+  w.show();
+  QMimeData mime;
+  mime.setUrls({QUrl::fromLocalFile(QString::fromStdString(out.string()))});
+  QDropEvent drop(QPointF(w.width() / 2.0, w.height() / 2.0), Qt::CopyAction, &mime, Qt::LeftButton, Qt::NoModifier);
+  w.dropEvent(&drop);
+  ASSERT_TRUE(w.results()) << w.logText().toStdString();
+  EXPECT_EQ(w.results()->folder().dir, QString::fromStdString(fs::absolute(out).string()));
+  EXPECT_EQ(w.replayBar().frameCount(), 4);
 }
