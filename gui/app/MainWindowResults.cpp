@@ -65,7 +65,7 @@ bool MainWindow::openResults(const QString& dir, QString* problems) {
     log_->append("warning: " + partial);
   }
   if (problems) *problems = partial;
-  status_->reset();
+  status_->showResults(f.status, f.isPartial());
   updateActions();
   return true;
 }

@@ -104,6 +104,7 @@ TEST(OpenResults, TheLayerListOffersEveryMapAndThePlotsHoldTheDiagnostics) {
   EXPECT_TRUE(w.logText().contains("opened results " + QString::fromStdString(fs::absolute(out).string())))
       << w.logText().toStdString();
   EXPECT_FALSE(w.windowTitle().contains("partial"));
+  EXPECT_TRUE(w.status().text().startsWith("results")) << w.status().text().toStdString();
 }
 
 TEST(OpenResults, MovingTheSliderShowsThatFramesRaster) {
@@ -171,6 +172,7 @@ TEST(OpenResults, AnIncompleteRunOpensMarkedAsPartial) {
   EXPECT_TRUE(problems.contains("'" + dir + "' is incomplete (status \"stopped\")")) << problems.toStdString();
   EXPECT_TRUE(problems.contains("partial"));
   EXPECT_TRUE(w.windowTitle().contains("(partial)")) << w.windowTitle().toStdString();
+  EXPECT_TRUE(w.status().text().startsWith("partial results (stopped)")) << w.status().text().toStdString();
   EXPECT_TRUE(w.logText().contains("incomplete")) << w.logText().toStdString();
   EXPECT_EQ(w.replayBar().frameCount(), 3);
   EXPECT_TRUE(w.layers().layerNames().contains("hfmax"));
