@@ -52,8 +52,9 @@ void findDem(ResultsFolder& f) {
   }
 }
 
-/// Series frames "NAME_NNNN.ext" under series/ and particle frames under particles/, on the report
-/// indices of series/index.csv (whose times they take; an index without a time gets its number).
+/// Series frames "NAME_NNNN.ext" under series/ (or OpenLISEM's "NAMEdddddd.ddd" in the folder) and
+/// particle frames under particles/, on the report indices of series/index.csv (whose times they
+/// take; an index without a time gets its number).
 void listFrames(ResultsFolder& f) {
   std::map<int, double> times;
   QFile index(f.dir + "/series/index.csv");
@@ -74,6 +75,15 @@ void listFrames(ResultsFolder& f) {
     const QRegularExpressionMatch m = seriesName.match(file.completeBaseName());
     if (!m.hasMatch()) continue;
     const int k = m.captured(2).toInt();
+    byName[m.captured(1)][k] = file.absoluteFilePath();
+    if (!times.count(k)) times[k] = k;
+  }
+  // Series Names=openlisem: NAMEdddddd.ddd in the folder itself, the nine digits the report index.
+  const QRegularExpression lisemName("^([A-Za-z]+)(\\d{6})\\.(\\d{3})$");
+  for (const QFileInfo& file : QDir(f.dir).entryInfoList(QDir::Files, QDir::Name)) {
+    const QRegularExpressionMatch m = lisemName.match(file.fileName());
+    if (!m.hasMatch()) continue;
+    const int k = (m.captured(2) + m.captured(3)).toInt();
     byName[m.captured(1)][k] = file.absoluteFilePath();
     if (!times.count(k)) times[k] = k;
   }

@@ -34,8 +34,8 @@ namespace fs = std::filesystem;
 namespace {
 
 /// Runs the example scene (3 s, a report every second: 4 series frames) into dir/out.
-fs::path writeResults(const fs::path& dir) {
-  const std::string runFile = writeExampleRunFile(dir, "End Time=0.05\nTimestep=1\nReport Series=1\n");
+fs::path writeResults(const fs::path& dir, const std::string& extraLines = "") {
+  const std::string runFile = writeExampleRunFile(dir, "End Time=0.05\nTimestep=1\nReport Series=1\n" + extraLines);
   const io::RunConfig config = io::RunConfig::load(runFile, sim::talusRunKeys());
   const sim::Scene scene = sim::loadScene(config);
   sim::Simulation(scene, config, (dir / "out").string(), sim::OutputMode::New).run();
@@ -294,4 +294,20 @@ TEST(OpenResults, DroppingAnOutputFolderOnTheWindowOpensIt) {
   ASSERT_TRUE(w.results()) << w.logText().toStdString();
   EXPECT_EQ(w.results()->folder().dir, QString::fromStdString(fs::absolute(out).string()));
   EXPECT_EQ(w.replayBar().frameCount(), 4);
+}
+
+TEST(OpenResults, OpenLisemNamedSeriesReplayToo) {
+  // Series Names=openlisem: hf000000.002 in the output folder itself.
+  const fs::path out = writeResults(scratchDir("results_lisem"), "Series Names=openlisem\n");
+  ASSERT_TRUE(fs::exists(out / "hf000000.002"));
+  MainWindow w;
+  w.setReportInDialogs(false);
+  w.show();
+  ASSERT_TRUE(w.openResults(QString::fromStdString(out.string())));
+  EXPECT_EQ(w.replayBar().frameCount(), 4);
+  EXPECT_TRUE(w.layers().layerNames().contains("hf"));
+  w.replayBar().slider().setValue(2);
+  ASSERT_TRUE(w.viewer().snapshot()->layer("hf"));
+  EXPECT_EQ(differences(*w.viewer().snapshot()->layer("hf"), rasterValues(out / "hf000000.002")), 0u);
+  EXPECT_DOUBLE_EQ(w.viewer().snapshot()->time, 2.0);
 }
