@@ -37,8 +37,7 @@ bool MainWindow::openResults(const QString& dir, QString* problems) {
   const std::vector<sim::GridLayerInfo>& all = results_->layers();
   QString preferred = f.series.empty() ? QString() : f.series.front().name;
   for (const char* name : {"hfmax", "hsmax", "htmax"})
-    if (preferred.isEmpty() && lists(all, name))
-      preferred = name;
+    if (preferred.isEmpty() && lists(all, name)) preferred = name;
   if (!preferred.isEmpty()) layers_->selectLayer(preferred);
   replay_->setFrames(f.frameTimes);
   showResultsFrame(0);
