@@ -1,13 +1,16 @@
 // talus-gui: the desktop application.
-//   talus-gui [RUNFILE] [--run] [--out DIR] [--overwrite] [--capture-at SECONDS:PATH] [--tilted] [--layer NAME]
+//   talus-gui [RUNFILE] [--results DIR] [--run] [--out DIR] [--overwrite] [--capture-at SECONDS:PATH] [--tilted] [--layer NAME]
 // --run starts the run-file at once; --out writes the results into DIR instead of the run-file's
 // Output Directory; --overwrite replaces earlier results without asking;
+// --results opens a finished output folder of `talus run` for replay (time slider, maps, plots);
 // --capture-at saves a picture of the whole window once the simulated time reaches SECONDS (or the
-// run ends) and quits (used for the README screenshot under Xvfb).
+// run ends; with --results: the first series frame at or after SECONDS) and quits (used for the
+// README screenshot under Xvfb).
 #include <QApplication>
 #include <QCommandLineParser>
 #include <QSurfaceFormat>
 #include <QTimer>
+#include <algorithm>
 #include <cstdio>
 
 #include "render/GlSetup.hpp"
@@ -34,7 +37,8 @@ int main(int argc, char** argv) {
                                       "SECONDS:PATH");
   const QCommandLineOption tiltedOpt("tilted", "start in the tilted 3D view");
   const QCommandLineOption layerOpt("layer", "grid layer to show (h, velocity, hmax, arrival, ...)", "NAME");
-  cli.addOptions({runOpt, outOpt, overwriteOpt, captureOpt, tiltedOpt, layerOpt});
+  const QCommandLineOption resultsOpt("results", "open the finished output folder DIR for replay", "DIR");
+  cli.addOptions({resultsOpt, runOpt, outOpt, overwriteOpt, captureOpt, tiltedOpt, layerOpt});
   cli.process(app);
 
   MainWindow window;
@@ -43,6 +47,7 @@ int main(int argc, char** argv) {
   const QStringList files = cli.positionalArguments();
   bool valid = true;
   QString invalid;  // the problems of an invalid run-file, shown in the window too
+  QString partial;  // why the results opened are incomplete, shown in the window too
   if (!files.isEmpty()) {
     // The terminal is where a command line's mistakes are read: a run-file that cannot be read
     // ends here, before any window appears; an invalid one is reported and then opened with its
@@ -57,6 +62,19 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "talus-gui: run-file '%s' is not valid (the errors are shown at their fields):\n%s\n",
                    qPrintable(files.front()), qPrintable(problems));
       invalid = problems;
+    }
+  }
+  if (cli.isSet(resultsOpt)) {
+    // As for a run-file: a folder that is no output ends here; an incomplete run opens as partial.
+    const QString dir = cli.value(resultsOpt);
+    QString problems;
+    if (!window.openResults(dir, &problems)) {
+      std::fprintf(stderr, "talus-gui: %s\n", qPrintable(problems));
+      return 2;
+    }
+    if (!problems.isEmpty()) {
+      std::fprintf(stderr, "talus-gui: warning: %s\n", qPrintable(problems));
+      partial = problems;
     }
   }
   window.show();
@@ -77,6 +95,8 @@ int main(int argc, char** argv) {
     window.reportProblems("Run-file not valid", "The run-file '" + files.front() +
                                                     "' is not valid; the errors are shown at their fields:\n" + invalid);
 
+  if (!partial.isEmpty()) window.showMessageBox("Partial results", partial);  // the log has it
+
   if (cli.isSet(captureOpt)) {
     const QString spec = cli.value(captureOpt);
     const double at = spec.section(':', 0, 0).toDouble();
@@ -85,6 +105,18 @@ int main(int argc, char** argv) {
       window.grab().save(path, "PNG");
       QApplication::quit();
     };
+    if (window.results() && !cli.isSet(runOpt)) {
+      // Replaying results: the first frame at or after SECONDS (the last when none is).
+      talus::gui::ReplayBar& bar = window.replayBar();
+      int frame = bar.frameCount() - 1;
+      for (int k = 0; k < bar.frameCount(); ++k)
+        if (window.results()->frameTime(k) >= at) {
+          frame = k;
+          break;
+        }
+      bar.setFrame(std::max(frame, 0));
+      QTimer::singleShot(800, &window, capture);
+    }
     QObject::connect(&window.controller(), &talus::gui::RunController::snapshotReady, &window,
                      [&window, at, capture](std::shared_ptr<const talus::sim::ViewSnapshot> s) {
                        // Let the viewer draw the snapshot before the picture is taken.

@@ -50,6 +50,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   status_ = new RunStatusPanel;
   hover_ = new QLabel;
   run_ = new RunController(this);
+  replay_ = new ReplayBar;
   statusBar()->addWidget(hover_, 1);
   statusBar()->addPermanentWidget(status_);
   buildActions();
@@ -77,6 +78,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
     plots_->addProgress(p, run_->scene() && run_->scene()->settings.twoPhase);
   });
   connect(run_, &RunController::snapshotReady, this, &MainWindow::onSnapshot);
+  connect(replay_, &ReplayBar::frameChanged, this, &MainWindow::showResultsFrame);
   applyLayerStyle();
   updateActions();
   resize(1400, 900);
@@ -88,6 +90,8 @@ MainWindow::~MainWindow() = default;
 void MainWindow::buildActions() {
   QMenu* file = menuBar()->addMenu("&File");
   open_ = file->addAction("&Open run-file...", this, &MainWindow::chooseAndOpen, QKeySequence::Open);
+  openResults_ = file->addAction("Open res&ults...", this, &MainWindow::chooseAndOpenResults);
+  compareResults_ = file->addAction("Co&mpare with results...", this, &MainWindow::chooseAndCompareResults);
   recent_ = new RecentFiles(file->addMenu("Open &recent"), this);
   connect(recent_, &RecentFiles::chosen, this, [this](const QString& f) {
     if (confirmDiscard()) openRunFile(f);
@@ -129,6 +133,9 @@ void MainWindow::buildActions() {
   for (QAction* a : {open_, save_, start_, pause_, step_, stop_, restart_}) bar->addAction(a);
   bar->addSeparator();
   for (QAction* a : {tilted_, shot_, record_}) bar->addAction(a);
+  QToolBar* replay = addToolBar("Results");
+  replay->setObjectName("resultsToolbar");
+  replay->addWidget(replay_);
 }
 
 void MainWindow::buildDocks() {
@@ -166,8 +173,12 @@ void MainWindow::restoreLayout() {
 QMessageBox* MainWindow::reportProblems(const QString& title, const QString& problems) {
   for (const QString& line : problems.split('\n'))
     if (!line.trimmed().isEmpty()) log_->append("error: " + line);
+  return showMessageBox(title, problems);
+}
+
+QMessageBox* MainWindow::showMessageBox(const QString& title, const QString& text) {
   if (!reportInDialogs_) return nullptr;
-  auto* box = new QMessageBox(QMessageBox::Warning, title, problems, QMessageBox::Ok, this);
+  auto* box = new QMessageBox(QMessageBox::Warning, title, text, QMessageBox::Ok, this);
   box->setAttribute(Qt::WA_DeleteOnClose);
   box->setTextInteractionFlags(Qt::TextSelectableByMouse);
   box->open();  // window-modal, without a nested event loop: the program goes on
@@ -188,8 +199,12 @@ void MainWindow::updateActions() {
   saveAs_->setEnabled(doc_ != nullptr);
   form_->setEnabled(doc_ && !active);
   open_->setEnabled(!active);
+  openResults_->setEnabled(!active);
+  compareResults_->setEnabled(results_ != nullptr);
   QString title = "Talus";
-  if (doc_) title = QFileInfo(QString::fromStdString(doc_->path())).fileName() + (doc_->isModified() ? " *" : "") + " - Talus";
+  if (results_)
+    title = "results " + results_->folder().dir + (results_->folder().isPartial() ? " (partial)" : "") + " - Talus";
+  else if (doc_) title = QFileInfo(QString::fromStdString(doc_->path())).fileName() + (doc_->isModified() ? " *" : "") + " - Talus";
   setWindowTitle(title);
 }
 
@@ -237,6 +252,8 @@ void MainWindow::showTerrainOf(const io::RunConfig& config) {
 
 void MainWindow::resetScene() {
   run_->reset();
+  results_.reset();
+  replay_->setFrames({});
   viewer_->clearScene();
   layers_->clear();
   plots_->clear();
@@ -276,6 +293,7 @@ bool MainWindow::startRun() {
   const QString out = QString::fromStdString(config->directory("Output Directory"));
   const bool hasRun = QFileInfo::exists(out + "/summary.json") || QFileInfo::exists(out + "/diagnostics.csv");
   if (hasRun && !confirmReplace(out, "holds the results of an earlier run. Replace them?")) return false;
+  if (results_) resetScene();  // the opened results' scene makes way for the run's
   plots_->clear();
   run_->start(*config, hasRun);
   return true;
@@ -335,14 +353,14 @@ QString MainWindow::hoverText(int i, int j) const {
   const auto s = viewer_->snapshot();
   QString text = QString("cell (%1, %2)").arg(i).arg(j);
   const sim::ViewFields* view = run_->viewFields();
-  if (!view) return text;
-  const Grid& g = view->grid();
+  if (!view && !results_) return text;
+  const Grid& g = view ? view->grid() : results_->grid();
   if (i < 0 || j < 0 || i >= g.nx || j >= g.ny) return text;
   const std::size_t k = g.index(i, j);
   text += QString("  x %1 y %2").arg(g.cellX(i), 0, 'f', 1).arg(g.cellY(j), 0, 'f', 1);
-  text += QString("  elevation %1 m").arg(view->elevation()[k], 0, 'f', 2);
+  text += QString("  elevation %1 m").arg((view ? view->elevation() : results_->elevation())[k], 0, 'f', 2);
   if (!s) return text;
-  for (const auto& info : view->gridLayers())
+  for (const auto& info : view ? view->gridLayers() : results_->layers())
     if (const std::vector<float>* v = s->layer(info.name); v && k < v->size() && std::isfinite((*v)[k]))
       text += QString("  %1 %2 %3").arg(QString::fromStdString(info.name)).arg((*v)[k], 0, 'g', 4).arg(QString::fromStdString(info.unit));
   return text;
@@ -427,7 +445,12 @@ void MainWindow::dropEvent(QDropEvent* e) {
   const auto urls = e->mimeData()->urls();
   if (urls.isEmpty() || !urls.front().isLocalFile()) return;
   if (run_->state() == RunController::State::Running || run_->state() == RunController::State::Paused) return;
-  if (confirmDiscard()) openRunFile(urls.front().toLocalFile());
+  const QString path = urls.front().toLocalFile();
+  if (QFileInfo(path).isDir()) {  // an output folder: its results
+    openResultsReporting(path);
+    return;
+  }
+  if (confirmDiscard()) openRunFile(path);
 }
 
 void MainWindow::closeEvent(QCloseEvent* e) {

@@ -13,6 +13,8 @@
 #include "form/ParameterForm.hpp"
 #include "form/RunFileDocument.hpp"
 #include "plots/PlotPanel.hpp"
+#include "results/ReplayBar.hpp"
+#include "results/ResultsReplay.hpp"
 #include "run/LogPanel.hpp"
 #include "run/RunController.hpp"
 #include "run/RunStatusPanel.hpp"
@@ -35,6 +37,20 @@ class MainWindow : public QMainWindow {
   /// validation found (each naming the file, line and key where it can; "" when valid), so that
   /// a caller without the window in view (the command line) can report them.
   bool openRunFile(const QString& path, QString* problems = nullptr);
+  /// Opens a finished output folder of `talus run` for replay: the DEM's hillshade, each map of
+  /// the folder in the layer list, the series frames on the time slider, diagnostics.csv in the
+  /// plots. Returns false (the reason, naming the folder, in the log and in `problems`) when the
+  /// folder is missing, not a Talus output (no summary.json) or has nothing readable. A run that did
+  /// not complete opens as partial: true, and `problems` says so.
+  bool openResults(const QString& dir, QString* problems = nullptr);
+  /// Compares the opened results with those in `dir` (same grid): a difference layer "NAME-diff"
+  /// (opened minus `dir`) joins the layer list for each map and series both hold. False (the
+  /// reason in the log and in `problems`) when no results are open or `dir` cannot be opened or
+  /// is on another grid.
+  bool compareResults(const QString& dir, QString* problems = nullptr);
+  /// The opened output folder (nullptr when none is open).
+  ResultsReplay* results() { return results_.get(); }
+  ReplayBar& replayBar() { return *replay_; }
   /// Validates the form and starts a run; false (errors shown next to their fields) when invalid.
   bool startRun();
   /// Stops the run (if any) and starts the open run-file again, as it is now in the form, after
@@ -49,6 +65,8 @@ class MainWindow : public QMainWindow {
   /// unless setReportInDialogs(false), in a message box over the window that does not block the
   /// program (returned; deleted when closed). Returns nullptr when no box was opened.
   QMessageBox* reportProblems(const QString& title, const QString& problems);
+  /// The message box of reportProblems, without the log (nullptr when dialogs are off).
+  QMessageBox* showMessageBox(const QString& title, const QString& text);
   /// Whether reportProblems opens a message box (off: tests and scripts without anyone to read it).
   void setReportInDialogs(bool on) { reportInDialogs_ = on; }
   /// Runs write into `dir` instead of the run-file's Output Directory (as `talus run --out`).
@@ -89,6 +107,12 @@ class MainWindow : public QMainWindow {
   void onSnapshot(std::shared_ptr<const sim::ViewSnapshot> s);
   void onHover(int i, int j, bool inside);
   void chooseAndOpen();
+  void chooseAndOpenResults();
+  void chooseAndCompareResults();
+  /// openResults, with a message box for a refusal or partial results.
+  void openResultsReporting(const QString& dir);
+  /// Shows series frame `frame` of the opened results.
+  void showResultsFrame(int frame);
   void saveAs();
   void screenshot();
   void toggleRecording(bool on);
@@ -105,12 +129,14 @@ class MainWindow : public QMainWindow {
   QLabel* hover_;
   RunController* run_;
   RecentFiles* recent_ = nullptr;
+  std::unique_ptr<ResultsReplay> results_;
+  ReplayBar* replay_;
   FrameExporter exporter_;
   bool askBeforeOverwrite_ = true;
   bool reportInDialogs_ = true;
   QString outputOverride_;
   int hoverI_ = -1, hoverJ_ = -1;
-  QAction *open_, *save_, *saveAs_, *start_, *pause_, *step_, *stop_, *restart_, *tilted_, *shot_, *record_;
+  QAction *open_, *openResults_, *compareResults_, *save_, *saveAs_, *start_, *pause_, *step_, *stop_, *restart_, *tilted_, *shot_, *record_;
 };
 
 }  // namespace talus::gui

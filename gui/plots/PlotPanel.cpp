@@ -1,6 +1,7 @@
 #include "plots/PlotPanel.hpp"
 
 #include <QGridLayout>
+#include <algorithm>
 
 namespace talus::gui {
 
@@ -33,6 +34,29 @@ void PlotPanel::addProgress(const RunProgress& p, bool twoPhase) {
 }
 
 void PlotPanel::addSnapshot(const sim::ViewSnapshot& s) { front_->append(distance_, s.time, s.frontDistance); }
+
+void PlotPanel::setDiagnostics(const DiagnosticsTable& table) {
+  clear();
+  const std::vector<double>* t = table.column("time_s");
+  if (!t) return;
+  const std::vector<double>* fluid = table.column("fluid_volume_m3");
+  const std::vector<double>* solid = table.column("solid_volume_m3");
+  const std::vector<double>* water = table.column("volume_m3");
+  const std::vector<double>* out = table.column("cumulative_outflow_m3");
+  const std::vector<double>* energy = table.column("kinetic_energy_J");
+  const bool twoPhase = solid && std::any_of(solid->begin(), solid->end(), [](double v) { return v != 0; });
+  for (std::size_t r = 0; r < t->size(); ++r) {
+    const double time = (*t)[r];
+    if (fluid && solid) volume_->append(total_, time, (*fluid)[r] + (*solid)[r]);
+    else if (water) volume_->append(total_, time, (*water)[r]);
+    if (twoPhase && fluid) {
+      volume_->append(fluid_, time, (*fluid)[r]);
+      volume_->append(solid_, time, (*solid)[r]);
+    }
+    if (out) outflow_->append(out_, time, (*out)[r]);
+    if (energy) kinetic_->append(energy_, time, (*energy)[r]);
+  }
+}
 
 void PlotPanel::clear() {
   for (TimeSeriesPlot* p : {volume_, outflow_, kinetic_, front_}) p->clear();

@@ -4,6 +4,7 @@
 #include <QWidget>
 
 #include "plots/TimeSeriesPlot.hpp"
+#include "results/DiagnosticsTable.hpp"
 #include "run/RunController.hpp"
 #include "sim/ViewFields.hpp"
 
@@ -18,8 +19,13 @@ class PlotPanel : public QWidget {
   void addProgress(const RunProgress& p, bool twoPhase);
   /// Adds the front position of a snapshot.
   void addSnapshot(const sim::ViewSnapshot& s);
+  /// Replaces the series by the rows of a finished run's diagnostics.csv (volumes, cumulative
+  /// outflow, kinetic energy; the front distance is not in the file and stays empty).
+  void setDiagnostics(const DiagnosticsTable& table);
   void clear();
   const TimeSeriesPlot& volumePlot() const { return *volume_; }
+  const TimeSeriesPlot& outflowPlot() const { return *outflow_; }
+  const TimeSeriesPlot& kineticPlot() const { return *kinetic_; }
 
  private:
   TimeSeriesPlot *volume_, *outflow_, *kinetic_, *front_;

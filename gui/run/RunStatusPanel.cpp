@@ -46,6 +46,11 @@ void RunStatusPanel::showState(RunController::State s) {
   if (s == RunController::State::Preparing) reset();
 }
 
+void RunStatusPanel::showResults(const QString& status, bool partial) {
+  reset();
+  state_->setText(partial ? "partial results (" + status + ")" : "results");
+}
+
 void RunStatusPanel::showProgress(const RunProgress& p) {
   const double span = p.endTime - p.startTime;
   const double frac = span > 0 ? std::clamp((p.time - p.startTime) / span, 0.0, 1.0) : 1.0;

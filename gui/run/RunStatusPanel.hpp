@@ -19,6 +19,9 @@ class RunStatusPanel : public QWidget {
   explicit RunStatusPanel(QWidget* parent = nullptr);
   void showProgress(const RunProgress& p);
   void showState(RunController::State s);
+  /// Opened results instead of a run: "results", or "partial results (STATUS)" for a run that did
+  /// not complete.
+  void showResults(const QString& status, bool partial);
   /// Forgets the rate history (a new run).
   void reset();
   QString text() const;

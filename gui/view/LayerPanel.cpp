@@ -156,6 +156,13 @@ void LayerPanel::setCatalogue(const std::vector<sim::GridLayerInfo>& layers,
   onLayerChosen();
 }
 
+QStringList LayerPanel::layerNames() const {
+  QStringList names;
+  for (int k = 0; k < layer_->count(); ++k)
+    if (!layer_->itemData(k).toString().isEmpty()) names << layer_->itemData(k).toString();
+  return names;
+}
+
 void LayerPanel::selectLayer(const QString& name) {
   preferred_ = name;
   const int k = layer_->findData(name);

@@ -37,6 +37,8 @@ class LayerPanel : public QWidget {
   void clear();
 
   QString layer() const;
+  /// The names of the layers offered, in list order ("(none)" left out).
+  QStringList layerNames() const;
   QString layerUnit() const;
   LayerStyle layerStyle() const;
   QString layerRamp() const { return layerRamp_->currentText(); }
