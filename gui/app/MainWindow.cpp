@@ -20,6 +20,8 @@
 #include "core/Error.hpp"
 #include "io/RasterIO.hpp"
 #include "sim/RunKeys.hpp"
+#include "view/InitialScene.hpp"
+#include "view/TerrainSlope.hpp"
 
 namespace talus::gui {
 
@@ -237,22 +239,29 @@ bool MainWindow::openRunFile(const QString& path, QString* problems) {
 }
 
 void MainWindow::showTerrainOf(const io::RunConfig& config) {
-  const io::MapValue dem = config.map("DEM");
-  if (!dem.isFile) return;
   try {
-    const Raster r = io::readRaster(dem.file);
-    std::vector<float> z(r.values.size());
-    for (std::size_t k = 0; k < z.size(); ++k)
-      z[k] = r.valid[k] ? static_cast<float>(r.values[k] * dem.multiplier) : NAN;
-    viewer_->setTerrain(r.grid, std::move(z));
+    initial_ = std::make_unique<InitialScene>(InitialScene::read(config));
   } catch (const std::exception& e) {
     log_->append(QString("warning: cannot show the terrain: %1").arg(e.what()));
+    return;
   }
+  for (const std::string& w : initial_->warnings) log_->append("warning: " + QString::fromStdString(w));
+  if (initial_->elevation.empty()) return;
+  viewer_->setTerrain(initial_->grid, initial_->elevation);
+  // The initial maps show as layers until the run's own snapshots replace them (the first is shown;
+  // the layer preferred for the run stays as it was).
+  const QString preferred = layers_->preferredLayer();
+  layers_->setCatalogue(initial_->layers, {});
+  layers_->selectLayer(preferred);
+  layers_->setSnapshot(initial_->snapshot);
+  viewer_->setSnapshot(initial_->snapshot);
+  applyLayerStyle();
 }
 
 void MainWindow::resetScene() {
   run_->reset();
   results_.reset();
+  initial_.reset();
   replay_->setFrames({});
   viewer_->clearScene();
   layers_->clear();
@@ -349,18 +358,26 @@ void MainWindow::onHover(int i, int j, bool inside) {
   hover_->setText(inside ? hoverText(i, j) : QString());
 }
 
+QString MainWindow::cursorReadout() const { return hover_->text(); }
+
 QString MainWindow::hoverText(int i, int j) const {
   const auto s = viewer_->snapshot();
   QString text = QString("cell (%1, %2)").arg(i).arg(j);
+  // The scene under the cursor: the run's, else the opened results', else the run-file's initial one.
   const sim::ViewFields* view = run_->viewFields();
-  if (!view && !results_) return text;
-  const Grid& g = view ? view->grid() : results_->grid();
+  const InitialScene* initial = initial_ && !initial_->elevation.empty() ? initial_.get() : nullptr;
+  if (!view && !results_ && !initial) return text;
+  const Grid& g = view ? view->grid() : results_ ? results_->grid() : initial->grid;
+  const std::vector<float>& z = view ? view->elevation() : results_ ? results_->elevation() : initial->elevation;
+  const std::vector<sim::GridLayerInfo>& layers = view ? view->gridLayers() : results_ ? results_->layers() : initial->layers;
   if (i < 0 || j < 0 || i >= g.nx || j >= g.ny) return text;
   const std::size_t k = g.index(i, j);
   text += QString("  x %1 y %2").arg(g.cellX(i), 0, 'f', 1).arg(g.cellY(j), 0, 'f', 1);
-  text += QString("  elevation %1 m").arg((view ? view->elevation() : results_->elevation())[k], 0, 'f', 2);
+  text += QString("  elevation %1 m").arg(z[k], 0, 'f', 2);
+  const double slope = slopeDegrees(g, z, i, j);
+  if (std::isfinite(slope)) text += QString("  slope %1\u00b0").arg(slope, 0, 'f', 1);
   if (!s) return text;
-  for (const auto& info : view ? view->gridLayers() : results_->layers())
+  for (const auto& info : layers)
     if (const std::vector<float>* v = s->layer(info.name); v && k < v->size() && std::isfinite((*v)[k]))
       text += QString("  %1 %2 %3").arg(QString::fromStdString(info.name)).arg((*v)[k], 0, 'g', 4).arg(QString::fromStdString(info.unit));
   return text;

@@ -18,6 +18,7 @@
 #include "run/LogPanel.hpp"
 #include "run/RunController.hpp"
 #include "run/RunStatusPanel.hpp"
+#include "view/InitialScene.hpp"
 #include "view/LayerPanel.hpp"
 #include "view/ViewerWidget.hpp"
 
@@ -81,6 +82,8 @@ class MainWindow : public QMainWindow {
   RunFileDocument* document() { return doc_.get(); }
   FrameExporter& exporter() { return exporter_; }
   QString logText() const { return log_->toPlainText(); }
+  /// What the status bar says about the cell under the cursor ("" when it is outside the terrain).
+  QString cursorReadout() const;
 
  protected:
   void dragEnterEvent(QDragEnterEvent* e) override;
@@ -130,6 +133,7 @@ class MainWindow : public QMainWindow {
   RunController* run_;
   RecentFiles* recent_ = nullptr;
   std::unique_ptr<ResultsReplay> results_;
+  std::unique_ptr<InitialScene> initial_;  ///< the open run-file's scene before it runs
   ReplayBar* replay_;
   FrameExporter exporter_;
   bool askBeforeOverwrite_ = true;

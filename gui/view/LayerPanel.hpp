@@ -37,6 +37,8 @@ class LayerPanel : public QWidget {
   void clear();
 
   QString layer() const;
+  /// The layer shown when a new catalogue lists it (the one last chosen or selected).
+  QString preferredLayer() const { return preferred_; }
   /// The names of the layers offered, in list order ("(none)" left out).
   QStringList layerNames() const;
   QString layerUnit() const;

@@ -53,10 +53,14 @@ TEST(SceneReset, OpeningAnInvalidRunFileLeavesNothingOfThePreviousScene) {
   EXPECT_EQ(distinctColours(w.viewer().grabFramebuffer()), 1);
   EXPECT_FALSE(w.form().field("CFL")->error().isEmpty());
 
-  // A valid one shows its own terrain, still without results.
+  // A valid one shows its own terrain and initial maps, still without results.
   ASSERT_TRUE(w.openRunFile(QString::fromStdString(writeExampleRunFile(scratchDir("reset_c")))));
   EXPECT_GT(distinctColours(w.viewer().grabFramebuffer()), 200);
-  EXPECT_EQ(w.viewer().snapshot(), nullptr);
+  const auto initial = w.viewer().snapshot();
+  ASSERT_NE(initial, nullptr);
+  EXPECT_EQ(initial->steps, 0);
+  EXPECT_EQ(initial->time, 0.0);
+  EXPECT_EQ(initial->layerNames, std::vector<std::string>{"initial water height"});
   EXPECT_EQ(w.plots().volumePlot().size(0), 0u);
 }
 
