@@ -82,6 +82,8 @@ class MainWindow : public QMainWindow {
   RunFileDocument* document() { return doc_.get(); }
   FrameExporter& exporter() { return exporter_; }
   QString logText() const { return log_->toPlainText(); }
+  /// Writes the layer the viewer shows (its current values) as a GeoTIFF. Returns "" or the problem.
+  QString exportShownLayer(const QString& path);
   /// What the status bar says about the cell under the cursor ("" when it is outside the terrain).
   QString cursorReadout() const;
 
@@ -118,6 +120,7 @@ class MainWindow : public QMainWindow {
   void showResultsFrame(int frame);
   void saveAs();
   void screenshot();
+  void chooseAndExportLayer();
   void toggleRecording(bool on);
   bool confirmDiscard();
   QString hoverText(int i, int j) const;
@@ -140,7 +143,7 @@ class MainWindow : public QMainWindow {
   bool reportInDialogs_ = true;
   QString outputOverride_;
   int hoverI_ = -1, hoverJ_ = -1;
-  QAction *open_, *openResults_, *compareResults_, *save_, *saveAs_, *start_, *pause_, *step_, *stop_, *restart_, *tilted_, *shot_, *record_;
+  QAction *open_, *openResults_, *compareResults_, *save_, *saveAs_, *start_, *pause_, *step_, *stop_, *restart_, *tilted_, *shot_, *record_, *exportLayer_;
 };
 
 }  // namespace talus::gui
