@@ -106,6 +106,7 @@ void MainWindow::buildActions() {
   saveAs_ = file->addAction("Save &as...", this, &MainWindow::saveAs, QKeySequence(Qt::CTRL | Qt::SHIFT | Qt::Key_S));
   file->addSeparator();
   shot_ = file->addAction("Export &screenshot (PNG)...", this, &MainWindow::screenshot);
+  exportFigure_ = file->addAction("Export &figure...", this, &MainWindow::chooseAndExportFigure);
   exportLayer_ = file->addAction("Export &layer as GeoTIFF...", this, &MainWindow::chooseAndExportLayer);
   record_ = file->addAction("Record &frame sequence...");
   record_->setCheckable(true);

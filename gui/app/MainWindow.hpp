@@ -82,6 +82,9 @@ class MainWindow : public QMainWindow {
   RunFileDocument* document() { return doc_.get(); }
   FrameExporter& exporter() { return exporter_; }
   QString logText() const { return log_->toPlainText(); }
+  /// Writes a figure of the map view (legend, time, scale bar, north arrow, coordinate ticks) as
+  /// PNG. Returns "" or the problem.
+  QString exportFigure(const QString& path);
   /// Writes the layer the viewer shows (its current values) as a GeoTIFF. Returns "" or the problem.
   QString exportShownLayer(const QString& path);
   /// What the status bar says about the cell under the cursor ("" when it is outside the terrain).
@@ -121,6 +124,7 @@ class MainWindow : public QMainWindow {
   void saveAs();
   void screenshot();
   void chooseAndExportLayer();
+  void chooseAndExportFigure();
   void toggleRecording(bool on);
   bool confirmDiscard();
   QString hoverText(int i, int j) const;
@@ -143,7 +147,7 @@ class MainWindow : public QMainWindow {
   bool reportInDialogs_ = true;
   QString outputOverride_;
   int hoverI_ = -1, hoverJ_ = -1;
-  QAction *open_, *openResults_, *compareResults_, *save_, *saveAs_, *start_, *pause_, *step_, *stop_, *restart_, *tilted_, *shot_, *record_, *exportLayer_;
+  QAction *open_, *openResults_, *compareResults_, *save_, *saveAs_, *start_, *pause_, *step_, *stop_, *restart_, *tilted_, *shot_, *record_, *exportLayer_, *exportFigure_;
 };
 
 }  // namespace talus::gui

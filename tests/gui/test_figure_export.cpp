@@ -1,0 +1,78 @@
+// File > Export figure writes the map view framed by coordinate ticks, with a colour-bar legend,
+// the time, a scale bar and a north arrow: the PNG's size and the pixels of each part are checked.
+#include <gtest/gtest.h>
+
+#include <QTest>
+
+#include "GuiTestSupport.hpp"
+#include "app/MainWindow.hpp"
+#include "export/FigureComposer.hpp"
+#include "render/ColorRamp.hpp"
+
+using talus::gui::FigureLayout;
+using talus::gui::MainWindow;
+using namespace talus::guitest;
+
+namespace {
+/// Number of pixels of `r` in `image` that are near black (all channels below 60).
+int darkPixels(const QImage& image, const QRect& r) {
+  int n = 0;
+  for (int y = r.top(); y <= r.bottom(); ++y)
+    for (int x = r.left(); x <= r.right(); ++x) {
+      const QColor c = image.pixelColor(x, y);
+      n += c.red() < 60 && c.green() < 60 && c.blue() < 60;
+    }
+  return n;
+}
+bool near(const QColor& a, const QColor& b) {
+  return std::abs(a.red() - b.red()) <= 3 && std::abs(a.green() - b.green()) <= 3 && std::abs(a.blue() - b.blue()) <= 3;
+}
+}  // namespace
+
+TEST(FigureExport, PngHasTheViewLegendScaleBarNorthArrowAndTicks) {
+  const auto dir = scratchDir("figure_export");
+  MainWindow w;
+  w.setReportInDialogs(false);
+  w.resize(1200, 800);
+  w.show();
+  ASSERT_TRUE(QTest::qWaitForWindowExposed(&w));
+  ASSERT_TRUE(w.openRunFile(QString::fromStdString(writeExampleRunFile(dir))));
+  waitFor([] { return false; }, 0.3);
+  const QString path = QString::fromStdString((dir / "figure.png").string());
+  ASSERT_EQ(w.exportFigure(path), "");
+  const QImage figure(path);
+  ASSERT_FALSE(figure.isNull());
+  const QSize view = w.viewer().grabFramebuffer().size();
+  const FigureLayout l = FigureLayout::of(view);
+  ASSERT_EQ(figure.size(), l.size);
+  // The view: the hillshade and the layer (many colours).
+  EXPECT_GT(distinctColours(figure.copy(l.view)), 200);
+  // The colour bar is the layer's ramp: max at the top, min at the bottom, many shades between.
+  const QImage bar = figure.copy(l.colourBar);
+  EXPECT_GT(distinctColours(bar), 50);
+  const talus::gui::ColorRamp ramp = talus::gui::ColorRamp::byName(w.layers().layerRamp());
+  EXPECT_TRUE(near(bar.pixelColor(bar.width() / 2, 0), ramp.at(1.0)));
+  EXPECT_TRUE(near(bar.pixelColor(bar.width() / 2, bar.height() - 1), ramp.at(0.0)));
+  // The legend's title and labels (text right of and above the bar).
+  EXPECT_GT(darkPixels(figure, QRect(l.colourBar.left(), l.colourBar.top() - 36, 150, 34)), 20);
+  EXPECT_GT(darkPixels(figure, QRect(l.colourBar.right() + 8, l.colourBar.top() - 8, 80, l.colourBar.height() + 16)), 40);
+  // The scale bar (a black bar and its label) and the north arrow over the view.
+  EXPECT_GT(darkPixels(figure, l.scaleBar), 100);
+  EXPECT_GT(darkPixels(figure, l.northArrow), 100);
+  // Coordinate ticks and labels below and left of the view; the time above it.
+  EXPECT_GT(darkPixels(figure, QRect(l.view.left(), l.view.bottom() + 2, l.view.width(), 24)), 50);
+  EXPECT_GT(darkPixels(figure, QRect(0, l.view.top(), l.view.left() - 1, l.view.height())), 50);
+  EXPECT_GT(darkPixels(figure, QRect(l.view.left(), 0, l.view.width(), l.view.top() - 1)), 20);
+}
+
+TEST(FigureExport, TheTiltedViewIsRefused) {
+  const auto dir = scratchDir("figure_export_tilted");
+  MainWindow w;
+  w.setReportInDialogs(false);
+  w.show();
+  ASSERT_TRUE(QTest::qWaitForWindowExposed(&w));
+  ASSERT_TRUE(w.openRunFile(QString::fromStdString(writeExampleRunFile(dir))));
+  w.viewer().setMode(talus::gui::ViewCamera::Mode::Tilted);
+  EXPECT_FALSE(w.exportFigure(QString::fromStdString((dir / "f.png").string())).isEmpty());
+  EXPECT_FALSE(std::filesystem::exists(dir / "f.png"));
+}
