@@ -76,3 +76,32 @@ TEST(FigureExport, TheTiltedViewIsRefused) {
   EXPECT_FALSE(w.exportFigure(QString::fromStdString((dir / "f.png").string())).isEmpty());
   EXPECT_FALSE(std::filesystem::exists(dir / "f.png"));
 }
+
+TEST(FigureExport, ScaleBarAndTicksFollowTheViewsScale) {
+  // A 400 x 300 px view at 2 m per pixel with its top-left corner at (1000, 5000): the scale bar is
+  // 200 m (100 px) long and x ticks fall every 200 m, at x = 1000, 1200, ... (every 100 px).
+  talus::gui::FigureContent c;
+  c.view = QImage(400, 300, QImage::Format_RGB32);
+  c.view.fill(Qt::white);
+  c.x0 = 1000;
+  c.y0 = 5000;
+  c.metresPerPixel = 2;
+  const QImage figure = talus::gui::composeFigure(c);
+  const FigureLayout l = FigureLayout::of(c.view.size());
+  ASSERT_EQ(figure.size(), l.size);
+  EXPECT_EQ(darkPixels(figure, l.colourBar), 0) << "no layer: no colour bar";
+  // The bar: the longest run of dark pixels in a row of the scale-bar box.
+  int longest = 0;
+  for (int y = l.scaleBar.top(); y <= l.scaleBar.bottom(); ++y) {
+    int run = 0;
+    for (int x = l.scaleBar.left(); x <= l.scaleBar.right(); ++x) {
+      run = darkPixels(figure, QRect(x, y, 1, 1)) ? run + 1 : 0;
+      longest = std::max(longest, run);
+    }
+  }
+  EXPECT_EQ(longest, 100);
+  // Tick marks just below the frame, at every 100th column of the view.
+  const int y = l.view.bottom() + 4;
+  for (int k = 0; k <= 4; ++k) EXPECT_EQ(darkPixels(figure, QRect(l.view.left() + 100 * k, y, 1, 1)), 1) << k;
+  EXPECT_EQ(darkPixels(figure, QRect(l.view.left() + 50, y, 1, 1)), 0);
+}
