@@ -428,7 +428,10 @@ void MainWindow::saveAs() {
 void MainWindow::screenshot() {
   const QString path = QFileDialog::getSaveFileName(this, "Export screenshot", "talus.png", "PNG images (*.png)");
   if (path.isEmpty()) return;
-  const QString problem = FrameExporter::saveScreenshot(*viewer_, path);
+  // The map view gets the figure's frame, legend, scale bar and north arrow; the tilted view has
+  // no single scale and is saved bare.
+  const bool figure = viewer_->mode() == ViewCamera::Mode::Map && viewer_->snapshot();
+  const QString problem = figure ? exportFigure(path) : FrameExporter::saveScreenshot(*viewer_, path);
   log_->append(problem.isEmpty() ? "screenshot saved to " + path : "error: " + problem);
 }
 

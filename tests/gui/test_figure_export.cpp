@@ -2,6 +2,8 @@
 // the time, a scale bar and a north arrow: the PNG's size and the pixels of each part are checked.
 #include <gtest/gtest.h>
 
+#include <QApplication>
+#include <QFileDialog>
 #include <QTest>
 
 #include "GuiTestSupport.hpp"
@@ -27,17 +29,21 @@ int darkPixels(const QImage& image, const QRect& r) {
 bool near(const QColor& a, const QColor& b) {
   return std::abs(a.red() - b.red()) <= 3 && std::abs(a.green() - b.green()) <= 3 && std::abs(a.blue() - b.blue()) <= 3;
 }
-}  // namespace
-
-TEST(FigureExport, PngHasTheViewLegendScaleBarNorthArrowAndTicks) {
-  const auto dir = scratchDir("figure_export");
-  MainWindow w;
+/// Shows the window at 1200 x 800 with the example run-file opened in `dir`, drawn.
+void showExample(MainWindow& w, const std::filesystem::path& dir) {
   w.setReportInDialogs(false);
   w.resize(1200, 800);
   w.show();
   ASSERT_TRUE(QTest::qWaitForWindowExposed(&w));
   ASSERT_TRUE(w.openRunFile(QString::fromStdString(writeExampleRunFile(dir))));
   waitFor([] { return false; }, 0.3);
+}
+}  // namespace
+
+TEST(FigureExport, PngHasTheViewLegendScaleBarNorthArrowAndTicks) {
+  const auto dir = scratchDir("figure_export");
+  MainWindow w;
+  ASSERT_NO_FATAL_FAILURE(showExample(w, dir));
   const QString path = QString::fromStdString((dir / "figure.png").string());
   ASSERT_EQ(w.exportFigure(path), "");
   const QImage figure(path);
@@ -104,4 +110,32 @@ TEST(FigureExport, ScaleBarAndTicksFollowTheViewsScale) {
   const int y = l.view.bottom() + 4;
   for (int k = 0; k <= 4; ++k) EXPECT_EQ(darkPixels(figure, QRect(l.view.left() + 100 * k, y, 1, 1)), 1) << k;
   EXPECT_EQ(darkPixels(figure, QRect(l.view.left() + 50, y, 1, 1)), 0);
+}
+
+TEST(FigureExport, BothPngMenuActionsWriteTheFigureOfTheMapView) {
+  const auto dir = scratchDir("figure_export_menu");
+  QApplication::setAttribute(Qt::AA_DontUseNativeDialogs);  // the Qt dialog, which the test can answer
+  MainWindow w;
+  ASSERT_NO_FATAL_FAILURE(showExample(w, dir));
+  const FigureLayout l = FigureLayout::of(w.viewer().grabFramebuffer().size());
+  int n = 0;
+  for (const QString text : {QString("Export &figure..."), QString("Export &screenshot (PNG)...")}) {
+    QAction* action = nullptr;
+    for (QAction* a : w.findChildren<QAction*>())
+      if (a->text() == text) action = a;
+    ASSERT_NE(action, nullptr) << text.toStdString();
+    const auto file = dir / ("menu" + std::to_string(n++) + ".png");
+    onNextModal([&](QWidget* modal) {
+      auto* dialog = qobject_cast<QFileDialog*>(modal);
+      if (!dialog) return modal->close(), void();
+      dialog->selectFile(QString::fromStdString(file.string()));
+      QMetaObject::invokeMethod(dialog, "accept");
+    });
+    action->trigger();
+    ASSERT_TRUE(waitFor([&] { return std::filesystem::exists(file); }, 10)) << text.toStdString();
+    const QImage png(QString::fromStdString(file.string()));
+    EXPECT_EQ(png.size(), l.size) << text.toStdString();
+    EXPECT_GT(distinctColours(png.copy(l.colourBar)), 50) << text.toStdString();
+    EXPECT_GT(darkPixels(png, l.scaleBar), 100) << text.toStdString();
+  }
 }
