@@ -119,7 +119,7 @@ TEST(FigureExport, BothPngMenuActionsWriteTheFigureOfTheMapView) {
   ASSERT_NO_FATAL_FAILURE(showExample(w, dir));
   const FigureLayout l = FigureLayout::of(w.viewer().grabFramebuffer().size());
   int n = 0;
-  for (const QString text : {QString("Export &figure..."), QString("Export &screenshot (PNG)...")}) {
+  for (const QString& text : {QString("Export &figure..."), QString("Export &screenshot (PNG)...")}) {
     QAction* action = nullptr;
     for (QAction* a : w.findChildren<QAction*>())
       if (a->text() == text) action = a;
