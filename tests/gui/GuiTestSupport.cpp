@@ -6,6 +6,7 @@
 #include <QMessageBox>
 #include <QTimer>
 #include <QElapsedTimer>
+#include <QLineEdit>
 #include <QThread>
 #include <cmath>
 #include <fstream>
@@ -92,6 +93,13 @@ std::shared_ptr<QString> answerNextMessageBox(int button, double seconds) {
     else box->reject();
   }, seconds);
   return seen;
+}
+
+void chooseInFileDialog(QFileDialog* dialog, const std::filesystem::path& file) {
+  dialog->setDirectory(QString::fromStdString(file.parent_path().string()));
+  if (auto* name = dialog->findChild<QLineEdit*>("fileNameEdit")) name->setText(QString::fromStdString(file.filename().string()));
+  else dialog->selectFile(QString::fromStdString(file.string()));
+  QMetaObject::invokeMethod(dialog, "accept");  // a protected override of QDialog's slot
 }
 
 int distinctColours(const QImage& image) {

@@ -1,6 +1,7 @@
 // Helpers of the GUI tests: a scratch copy of the example run-file, waiting on the event loop, and
 // image statistics for the rendered-frame checks.
 #pragma once
+#include <QFileDialog>
 #include <QImage>
 #include <QString>
 #include <QWidget>
@@ -26,6 +27,11 @@ void onNextModal(const std::function<void(QWidget*)>& act, double seconds = 30);
 /// Answers the next message box that opens (within `seconds`) with `button`; the returned string
 /// receives the box's text once it was answered (empty while none was).
 std::shared_ptr<QString> answerNextMessageBox(int button, double seconds = 30);
+/// Chooses `file` in a file dialog and accepts it: its folder, and its name typed into the dialog's
+/// file-name field (QFileDialog::selectFile leaves that field alone while it has the keyboard focus,
+/// which it gets as the dialog shows, sooner or later: in ctest's build folder the dialog kept its
+/// default name).
+void chooseInFileDialog(QFileDialog* dialog, const std::filesystem::path& file);
 /// Number of distinct colours of an image.
 int distinctColours(const QImage& image);
 /// Standard deviation of the grey value (0..255) over the image.

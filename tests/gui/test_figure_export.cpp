@@ -128,11 +128,10 @@ TEST(FigureExport, BothPngMenuActionsWriteTheFigureOfTheMapView) {
     onNextModal([&](QWidget* modal) {
       auto* dialog = qobject_cast<QFileDialog*>(modal);
       if (!dialog) return modal->close(), void();
-      dialog->selectFile(QString::fromStdString(file.string()));
-      QMetaObject::invokeMethod(dialog, "accept");
+      chooseInFileDialog(dialog, file);
     });
     action->trigger();
-    ASSERT_TRUE(waitFor([&] { return std::filesystem::exists(file); }, 10)) << text.toStdString();
+    ASSERT_TRUE(waitFor([&] { return std::filesystem::exists(file); }, 10)) << text.toStdString() << "\n" << w.logText().toStdString();
     const QImage png(QString::fromStdString(file.string()));
     EXPECT_EQ(png.size(), l.size) << text.toStdString();
     EXPECT_GT(distinctColours(png.copy(l.colourBar)), 50) << text.toStdString();

@@ -36,8 +36,7 @@ TEST(WindowActions, CtrlShiftSSavesAsThroughTheDialog) {
       return;
     }
     dialogSeen = dialog->acceptMode() == QFileDialog::AcceptSave;
-    dialog->selectFile(QString::fromStdString(copy.string()));
-    QMetaObject::invokeMethod(dialog, "accept");  // a protected override of QDialog's slot
+    chooseInFileDialog(dialog, copy);
   });
   QTest::keyClick(&w, Qt::Key_S, Qt::ControlModifier | Qt::ShiftModifier);
   waitFor([&] { return fs::exists(copy); }, 10);
