@@ -12,7 +12,8 @@
 // Passive scalars carried with the solids (conserved as h_s * value, upwinded): the internal
 //   friction angle phi, the solid density rho_s, the grain size d and the cohesion c, so a cohesive
 //   release keeps its cohesion where it flows (and loose material stays loose where it flows over a
-//   cohesive release's former footprint).
+//   cohesive release's former footprint), and the lift-off speed w >= 0 of the curvature term
+//   (solid_bed.cl, point 5; zero with the term off).
 // Sources S (implicit, per stage, first order in time): the solids' basal law (basal_rheology.cl:
 //   Coulomb friction tan(delta) (1 - B gamma_eff) g_n h_s by default, or Voellmy, mu(I), Bingham,
 //   Herschel-Bulkley) and the drag with virtual mass, solved together as one momentum-conserving
@@ -53,8 +54,8 @@
 #define DEBRIS_CURVATURE 0
 #endif
 
-#define NSOLID 7   // solid state components: h_s, q_sx, q_sy, h_s phi, h_s rho_s, h_s d, h_s c
-#define NSCALAR 4  // the passive scalars among them (from component 3)
+#define NSOLID 8   // solid state components: h_s, q_sx, q_sy, h_s phi, h_s rho_s, h_s d, h_s c, h_s w
+#define NSCALAR 5  // the passive scalars among them (from component 3)
 
 /// The bed the grid phases see: the DEM, plus the particles' confined thickness in hybrid mode.
 #if DEBRIS_OBSTACLE
@@ -200,7 +201,7 @@ __kernel void debris_stage(__constant const FlowParams* p, __constant const Debr
   const real dtdx = dt / p->dx;
   const Material mc = material_of(p, dp, S_st, hf_st, delta, k, n);
 
-  real dS[NSOLID] = {0, 0, 0, 0, 0, 0, 0};
+  real dS[NSOLID] = {0, 0, 0, 0, 0, 0, 0, 0};
   real dhf = 0, dqf[2] = {0, 0}, out_s = 0, out_f = 0;
   real mass_s[2], mass_f[2], norm_s[2], norm_f[2], tang_s[2], tang_f[2], sc_flux[NSCALAR][2];
   real beta_lo[2], beta_hi[2];  // blocked fractions of the column at the minus / plus face (solid_bed.cl)
@@ -444,9 +445,15 @@ __kernel void debris_stage(__constant const FlowParams* p, __constant const Debr
     col.h_st = S_st[k];
     col.h = hsn;
 #if DEBRIS_CURVATURE
-    // The turn's normal force adds to the weight on the bed (centripetal normal stress at concave
-    // bends), averaged over the step; where it pulls (convex) the bed carries less, never below zero.
-    const real gload = gnk * fmax((real)0, (real)1 + turn_dt / (hsn * dt * (real)GRAVITY));
+    // The bed's normal impulse over the stage (solid_bed.cl, point 5), per unit mass in vertical
+    // velocity: what gravity and the turn ask of it, g ds + (1 - a) turn / h (the turn enters the
+    // stage's state with the weight (1 - a) dt = ds), less the lift-off speed w the material has:
+    // the bed only pushes. What the material is still moving away from the bed is kept as w, which
+    // gravity and the next concave turns use up before the bed presses again (a landing).
+    const real need = (real)GRAVITY * ds + ((real)1 - a) * turn_dt / hsn;
+    const real w_off = Sn[7] / hsn;
+    const real gload = ds > (real)0 ? gnk * fmax((real)0, need - w_off) / ((real)GRAVITY * ds) : gnk;
+    if (ds > (real)0) Sn[7] = hsn * fmax((real)0, w_off - need);
 #else
     const real gload = gnk;
 #endif
@@ -474,6 +481,9 @@ __kernel void debris_stage(__constant const FlowParams* p, __constant const Debr
     qf[1] /= factor;
   }
 
+#if DEBRIS_CURVATURE
+  if (!(hsn > p->h_dry)) Sn[7] = 0;  // no column, no flight: the next material in the cell lands
+#endif
   S_out[k] = hsn;
   S_out[n + k] = qs[0];
   S_out[2 * n + k] = qs[1];

@@ -39,7 +39,9 @@ __kernel void debris_entrain(__constant const FlowParams* p, __constant const De
   const real dh = fmin(e, growth * s * q * dt);
   if (!(dh > (real)0)) return;
   const real hs = S[k], hn = hs + dh;
-  for (int cc = 0; cc < 4; ++cc) {  // the passive scalars, h_s value (debris_stage.cl)
+  // The passive scalars, h_s value (debris_stage.cl); the fifth, the lift-off speed, keeps h_s w: the
+  // entrained material lies on the bed (w = 0) and mixes in.
+  for (int cc = 0; cc < 4; ++cc) {
     const real value = hs > p->h_dry ? S[(3 + cc) * n + k] / hs : scalar_default(dp, cc);
     S[(3 + cc) * n + k] = hn * value;
   }

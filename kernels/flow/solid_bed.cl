@@ -47,6 +47,19 @@
 //    unilateral contact, applied implicitly like friction; moving away is free). This is the force
 //    that holds material pressed against a wall or a step by the slope, and that stops material
 //    flowing into an obstacle, which then piles up until it overtops the step.
+// 5. The bed only pushes (the curvature term's contact, debris_stage.cl). Over a stage the bed must
+//    give the solids the vertical velocity g ds + turn / h (gravity, and the turn of point 1) for them
+//    to follow it; at a convex edge fast enough material needs a negative share, a pull. The bed
+//    cannot pull: the material lifts off, and the speed at which it moves away from the bed, w >= 0,
+//    is carried with it (the fifth passive scalar h_s w). Gravity and the next concave turns use w up
+//    before the bed presses again, so the landing's normal impulse is the net turn of the whole
+//    flight, not the concave half of it: the contact impulse is max(0, need - w) and w becomes
+//    max(0, w - need). Over a bed whose roughness is shorter than the flights, the mean normal
+//    impulse is then gravity's (momentum balance normal to the mean bed), and the friction on it the
+//    plane's; clamping each cell's load at zero instead (the form before) added the concave halves'
+//    friction without the convex halves' relief, a friction that grew with u^2 times the DEM's noise
+//    (test_terrain_roughness.cpp). The kinematics stay on the bed (the depth-averaged
+//    model has no flight path): only the friction's normal stress knows the flight.
 #ifndef TALUS_FLOW_SOLID_BED_CL
 #define TALUS_FLOW_SOLID_BED_CL
 #include "flow/riemann.cl"

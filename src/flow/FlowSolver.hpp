@@ -110,6 +110,8 @@ class FlowSolver {
   std::vector<double> hs() const;
   std::vector<double> qsx() const;
   std::vector<double> qsy() const;
+  /// h_s w: the solids' lift-off speed (curvature term, kernels/flow/solid_bed.cl point 5) times h_s [m^2/s].
+  std::vector<double> hsLiftOff() const { return solidComponent(7); }
   std::vector<double> solidScalar(int which) const;  ///< 0 phi, 1 rho_s, 2 grain size, 3 cohesion [Pa]
   DebrisMaxima debrisMaxima() const;
   /// The evolving state as the device holds it (h, qx, qy, maxima, arrival; raw bytes of the run's
@@ -205,7 +207,7 @@ class FlowSolver {
   compute::RealBuffer hMax_, vMax_, arrival_;
   compute::RealBuffer infiltration_, sink_;  ///< capacity [m/s] and the last step's infiltrated depth [m]
   compute::Reducer reducer_;
-  // Two-phase model: solid state (6 components, see kernels/flow/debris_stage.cl) at the start of
+  // Two-phase model: solid state (8 components, see kernels/flow/debris_stage.cl) at the start of
   // the step and after stage 1, static-solid flags, static maps, maxima.
   compute::RawBuffer debrisParams_;
   compute::RealBuffer solid0_, solid1_, delta_, maxima_;

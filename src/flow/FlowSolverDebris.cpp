@@ -13,7 +13,7 @@
 namespace talus::flow {
 namespace {
 
-constexpr int kSolidComponents = 7;  // h_s, q_sx, q_sy, h_s phi, h_s rho_s, h_s d, h_s c
+constexpr int kSolidComponents = 8;  // h_s, q_sx, q_sy, h_s phi, h_s rho_s, h_s d, h_s c, h_s w (lift-off)
 constexpr int kMaximaComponents = 7;
 constexpr double kDefaultPhi = kDebrisDefaultPhi;  // 30 degrees, where no solids are
 constexpr double kDefaultRhoS = kDebrisDefaultRhoS;
@@ -87,6 +87,7 @@ void FlowSolver::setDebrisInput(const FlowInput& in, const std::vector<double>& 
     state[4 * n + k] = hs[k] * rho[k];
     state[5 * n + k] = hs[k] * grain[k];
     state[6 * n + k] = hs[k] * cohesion[k];  // carried with the material from here on
+    // state[7 * n + k]: the lift-off speed of the curvature term (solid_bed.cl, point 5), 0: on the bed
     // Solids at rest start static: they move only once their driving force beats friction.
     lock[k] = wet && (state[n + k] != 0.0 || state[2 * n + k] != 0.0) ? 0 : 1;
     maxima[k] = h[k];
