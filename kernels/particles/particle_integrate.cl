@@ -51,7 +51,7 @@ __kernel void particle_integrate(__constant const ParticleParams* p, __global co
                                  __global real* V, __global real* rho, __global real* Vf,
                                  __global const real* Vf0, __global const real* coh, __global const real* coh0,
                                  __global real* released, __global const real* fluid_depth,
-                                 __global real* out_mass, const real dt) {
+                                 __global real* lift_off, __global real* out_mass, const real dt) {
   const int i = get_global_id(0);
   if (i >= p->count) return;
   out_mass[i] = 0;
@@ -73,7 +73,8 @@ __kernel void particle_integrate(__constant const ParticleParams* p, __global co
   // plane with its speed kept, as the grid's arriving solids are (debris_stage.cl, arrival_turn; the
   // centred Hessian v^T H v sampled at the particle turned a rough DEM's noise into speed). The
   // turn's normal force, v . (grad b(x) - grad b(x - dt v)) / dt, adds to the weight in the basal
-  // friction (centripetal normal stress at concave bends), never below zero.
+  // friction (centripetal normal stress at concave bends); where it would pull, the particle lifts
+  // off and lands later (its lift-off speed carried in lift_off, as the grid's solids carry theirs).
   const real bx = terrain_sample(p, grad_x, xi, yi), by = terrain_sample(p, grad_y, xi, yi);
   const real g = terrain_sample(p, gn, xi, yi);
 #if PARTICLE_CURVATURE
@@ -90,7 +91,13 @@ __kernel void particle_integrate(__constant const ParticleParams* p, __global co
     const real scale = p2 > (real)0 ? sqrt(m2 / p2) : (real)1;
     u0 = scale * up;
     v0 = scale * vp;
-    if (dt > (real)0) gload = g * fmax((real)0, (real)1 + d / (dt * (real)GRAVITY));
+    if (dt > (real)0) {
+      // The bed only pushes (solid_bed.cl, point 5): of the vertical velocity g dt + d that following
+      // it asks, the particle's lift-off speed w is used up first; a pull lifts it off (w grows).
+      const real need = (real)GRAVITY * dt + d, w = lift_off[i];
+      gload = g * fmax((real)0, need - w) / (dt * (real)GRAVITY);
+      lift_off[i] = fmax((real)0, w - need);
+    }
   }
 #else
   const real u0 = vx[i], v0 = vy[i], gload = g;  // (Curvature Acceleration off: compiled out)

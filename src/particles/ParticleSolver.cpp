@@ -262,6 +262,7 @@ void ParticleSolver::setParticles(const SeededParticles& seeded, const ParticleM
   make(fsc0_, "particle initial structured fraction"), make(ffc0_, "particle initial confined fraction");
   make(Vf_, "particle confined fluid"), make(Vf0_, "particle initial confined fluid"), make(released_, "particle released fluid");
   make(fluidDepth_, "fluid depth at the particles");
+  make(liftOff_, "particle lift-off speed");
   make(x_, "particle x"), make(y_, "particle y"), make(vx_, "particle vx"), make(vy_, "particle vy");
   make(m_, "particle mass"), make(rho_, "particle density"), make(phi_, "particle phi"), make(delta_, "particle delta");
   make(coh_, "particle cohesion"), make(coh0_, "particle initial cohesion"), make(sxx_, "particle sxx");
@@ -286,6 +287,7 @@ void ParticleSolver::setParticles(const SeededParticles& seeded, const ParticleM
       throw InputError("particle " + std::to_string(q) + ": confined fluid volume " + std::to_string(vf[q]) +
                        " m^3 outside [0, the particle's volume " + std::to_string(seeded.volume[q]) + "]");
   Vf_.upload(vf), Vf0_.upload(vf), released_.upload(zero), fluidDepth_.upload(zero);
+  liftOff_.upload(zero);
   x_.upload(seeded.x), y_.upload(seeded.y), vx_.upload(zero), vy_.upload(zero), m_.upload(seeded.mass);
   rho_.upload(rho), phi_.upload(phi), delta_.upload(delta), coh_.upload(coh), coh0_.upload(coh);
   sxx_.upload(zero), syy_.upload(zero), sxy_.upload(zero), plastic_.upload(zero);
@@ -350,7 +352,8 @@ const std::vector<compute::RealBuffer ParticleSolver::*>& ParticleSolver::stateF
   static const std::vector<compute::RealBuffer S::*> fields = {
       &S::x_,   &S::y_,   &S::vx_,  &S::vy_,     &S::m_,       &S::rho_,  &S::phi_,     &S::delta_,
       &S::coh_, &S::coh0_, &S::sxx_, &S::syy_,   &S::sxy_,     &S::plastic_, &S::A_,    &S::V_,
-      &S::fsc0_, &S::ffc0_, &S::Vf_, &S::Vf0_,   &S::released_, &S::fluidDepth_};
+      &S::fsc0_, &S::ffc0_, &S::Vf_, &S::Vf0_,   &S::released_, &S::fluidDepth_,
+      &S::liftOff_};
   return fields;
 }
 
@@ -419,7 +422,7 @@ void ParticleSolver::subStep(double ds) {
                ax_, ay_);
   forces_.launch(global, kParticleGroup, "particle_forces");
   integrate_.bind(params_, mask_, bed_, gradX_, gradY_, gn_, limitedSlope_, x_, y_, vx_, vy_, m_, delta_, ax_, ay_, A_, div_, V_, rho_, Vf_,
-                  Vf0_, coh_, coh0_, released_, fluidDepth_, outMass_, compute::RealArg{ds});
+                  Vf0_, coh_, coh0_, released_, fluidDepth_, liftOff_, outMass_, compute::RealArg{ds});
   integrate_.launch(global, kParticleGroup, "particle_integrate");
   diag_.outflowMass += reducer_.sum(outMass_, count_);
 }

@@ -157,6 +157,7 @@ class ParticleSolver {
   // Particle fields (reordered together at every neighbour build).
   compute::RealBuffer x_, y_, vx_, vy_, m_, rho_, phi_, delta_, coh_, coh0_, sxx_, syy_, sxy_, plastic_, A_, V_, fsc0_, ffc0_;
   compute::RealBuffer Vf_, Vf0_, released_, fluidDepth_;
+  compute::RealBuffer liftOff_;  ///< speed at which a particle moves away from the bed [m/s] (curvature term)
   // Fluid coupling (setFluidCoupling).
   bool coupled_ = false;
   double grain_ = 0.01;

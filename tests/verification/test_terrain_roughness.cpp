@@ -271,3 +271,72 @@ TEST(TerrainRoughness, ParticleBlockOnANoisyPlaneStaysBelowFreeFall) {
   EXPECT_GT(top - lowestReached, 50.0) << "the block must slide down the plane";
   EXPECT_LT(worst, 1.0);
 }
+
+namespace {
+
+/// Mean downslope velocity, averaged over the second second, of a loose particle block (2 m thick,
+/// 8 x 10 cells, phi 30 deg, no cohesion) launched at 20 m/s down the corrugated 30 deg plane of
+/// runCorrugated (amplitude `amplitude`), with bed friction angle `deltaDeg` (curvature term on).
+double particleBlockSpeed(double amplitude, double deltaDeg) {
+  constexpr double kPi = 3.14159265358979323846, kV0 = 20.0, kWavelength = 8.0;
+  const Grid grid = Grid::make(kNx, kNy, 1.0);
+  particles::ParticleTerrain terrain;
+  terrain.curvature = true;
+  terrain.mask.assign(grid.cells(), 1);
+  terrain.bed.assign(grid.cells(), 0.0);
+  const double slope = std::tan(30.0 * kPi / 180.0);
+  for (int j = 0; j < kNy; ++j)
+    for (int i = 0; i < kNx; ++i)
+      terrain.bed[grid.index(i, j)] = slope * (kNy - j) * grid.dx + amplitude * std::sin(2.0 * kPi * j * grid.dx / kWavelength);
+  particles::SeedInput in;
+  in.mask = terrain.mask;
+  in.bed = terrain.bed;
+  in.thickness.assign(grid.cells(), 0.0);
+  in.density.assign(grid.cells(), 2400.0);
+  for (int j = 0; j < kNy; ++j)
+    for (int i = 0; i < kNx; ++i)
+      if (released(i, j)) in.thickness[grid.index(i, j)] = 2.0;
+  const particles::SeededParticles seeded = particles::seedParticles(grid, in, particles::SeedSpacing{0, 2});
+  particles::ParticleMaterial mat;
+  mat.density = {2400.0};
+  mat.phi = {30.0 * kPi / 180.0};
+  mat.delta = {deltaDeg * kPi / 180.0};
+  mat.cohesion = {0.0};
+  particles::ParticleSettings ps;
+  ps.edgeWalls = true;
+  particles::ParticleSolver solver(test::testContext(compute::Precision::Double), grid, terrain, ps);
+  solver.setParticles(seeded, mat);
+  solver.setVelocities(std::vector<double>(seeded.x.size(), 0.0), std::vector<double>(seeded.x.size(), kV0));
+  double mean = 0;
+  for (int k = 0; k < 40; ++k) {
+    solver.step(0.05);
+    if (k < 20) continue;
+    const particles::ParticleState st = solver.state();
+    double m = 0, p = 0;
+    for (std::size_t q = 0; q < st.size(); ++q) m += st.mass[q], p += st.mass[q] * st.vy[q];
+    mean += p / m / 20;
+  }
+  return mean;
+}
+
+}  // namespace
+
+// The particles' form of CoulombBlockOverCorrugationsLosesThePlanesSpeedToFriction: each particle
+// carries its lift-off speed (particle_integrate.cl), so a loose block launched at 20 m/s over the
+// 0.2 m corrugations loses to friction about the smooth plane's speed. The particle kernel's rules for
+// one particle (the turn, the lift-off, the cells' centred gradients interpolated, as written out in
+// a 60-line script) give a mean normal load of 1.06 g_n there (the clamped load 1.87); the block's
+// particles, bound by their elasto-plastic stresses, take up the corrugations' kicks differently with
+// and without friction, and the block's ratio is 1.21 (clamped load: 1.91). Asserted: within 25 % of 1,
+// which the clamped form misses by a factor 3.6; the block's extra 15 % is an open finding.
+TEST(TerrainRoughness, ParticleBlockOverCorrugationsLosesThePlanesSpeedToFriction) {
+  constexpr double kDelta = 20.0, kA = 0.2;
+  const double smoothLoss = particleBlockSpeed(0.0, 0.0) - particleBlockSpeed(0.0, kDelta);
+  const double roughFree = particleBlockSpeed(kA, 0.0), roughCoulomb = particleBlockSpeed(kA, kDelta);
+  const double ratio = (roughFree - roughCoulomb) / smoothLoss;
+  std::printf("[ corrugated plane, particles, Coulomb ] speed lost to friction (mean over 1-2 s): smooth %.3f m/s, A = %.2f m "
+              "%.3f m/s (frictionless %.3f, Coulomb %.3f); ratio %.3f\n",
+              smoothLoss, kA, roughFree - roughCoulomb, roughFree, roughCoulomb, ratio);
+  EXPECT_GT(smoothLoss, 0.0);
+  EXPECT_NEAR(ratio, 1.0, 0.25);
+}
