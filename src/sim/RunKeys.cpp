@@ -192,10 +192,10 @@ void addFlowKeys(KeyRegistry& r) {
   Section(r, "Flow")
       << lisem("n.map", map("Manning", "0.01", "s/m^(1/3)", 0, 1, "Manning roughness n"))
       << flag("Slope Correction", "1", "gravity g cos^2(theta) on steep beds (spec section 1)")
-      << flag("Curvature Acceleration", "0",
+      << flag("Curvature Acceleration", "1",
               "solids and particles: the bed turns the material onto its tangent plane along its path, and the "
-              "turn's normal force adds to friction (run-up in smooth valleys within 1.2 %; off by default: "
-              "its centripetal friction on a rough DEM shortens real runouts)")
+              "turn's normal force adds to friction where the bed presses; material thrown off a convex edge "
+              "lifts off and lands (run-up in smooth valleys within 1.2 %; 0: the plane's g cos^2(theta) only)")
       << choice("Depth Pressure", {"cos2", "cos4"}, "cos2",
                 "depth-pressure gravity g_p = g cos^2(theta) (lake at rest exact) or g cos^4(theta)");
 }
