@@ -1,7 +1,8 @@
 // Diagnostics and running maxima of the two-phase model (spec §8), one work-group per active tile:
 // CFL speed max over cells of max(|u_s| + |v_s|, |u_f| + |v_f|) + 2 (sqrt(g H max(1, K_passive)) + w),
 // w the bed-slope speed of diagnostics.cl (plus the viscous speed bound of debris_viscous.cl when on),
-// volumes and outflow of each phase, kinetic energy (J, both phases), smallest thickness; and per
+// volumes and outflow of each phase, kinetic energy (J, both phases), the work of the step's stiff
+// sources (debris_stage.cl, out_step row 2), smallest thickness; and per
 // cell the maxima of each phase's thickness and speed, of the total thickness, the solid fraction
 // and the impact pressure rho_m |u_m|^2 of the mixture, and the arrival time of the mixture.
 #ifndef DEBRIS_OBSTACLE
@@ -31,7 +32,7 @@ void debris_tile_diagnostics(__constant const FlowParams* p, __constant const De
   const int lid = get_local_id(1) * TILE + get_local_id(0);
   const int n = p->nx * p->ny;
   real speed = 0, volf = 0, outf = 0, ke = 0, hmin = REAL_MAX, vols = 0, outs = 0, pe = 0, kev = 0, flow = 0,
-       wave_wet = 0;
+       wave_wet = 0, work = 0;
   int wet = 0;
   if (i < p->nx && j < p->ny && cell_inside(p, mask, i, j)) {
     const int k = cell_index(p, i, j);
@@ -68,6 +69,7 @@ void debris_tile_diagnostics(__constant const FlowParams* p, __constant const De
     vols = hs * area;
     outf = out_step[k];
     outs = out_step[n + k];
+    work = out_step[2 * n + k];
     ke = (real)0.5 * (rho_s * hs * (us * us + vs * vs) + dp->rho_f * h * (uf * uf + vf * vf)) * area;
     // Energy accounting: the centroid height of each phase's column (solids on the DEM, fluid on
     // top of them) and the vertical velocity u.grad b of material that follows the bed (the slope of
@@ -97,6 +99,7 @@ void debris_tile_diagnostics(__constant const FlowParams* p, __constant const De
   s[DIAG_OUTFLOW_S * TILE_CELLS + lid] = outs;
   s[DIAG_POTENTIAL * TILE_CELLS + lid] = pe;
   s[DIAG_KINETIC_V * TILE_CELLS + lid] = kev;
+  s[DIAG_WORK * TILE_CELLS + lid] = work;
   s_wet[lid] = wet;
   reduce_tile(s, s_wet, DIAG_MAX_ROWS, lid, get_group_id(0), p->tiles_x * p->tiles_y, partial, tile_wet,
               tile_list[get_group_id(0)]);

@@ -180,6 +180,24 @@ inline real2 arrival_turn(__constant const FlowParams* p, __constant const Debri
   return (real2)(scale * up - u, scale * vp - v);
 }
 
+/// Kinetic energy per unit area of a cell's two phases moving along the bed of slope (sx, sy):
+/// (rho_s (|q_s|^2 + (q_s . grad b)^2) / h_s + rho_f (...) / h_f) / 2 [J/m^2], the horizontal and the
+/// vertical motion as the diagnostics count them (debris_diagnostics.cl), each phase where it is
+/// thicker than h_dry.
+inline real column_kinetic(__constant const DebrisParams* dp, real hs, const real* qs, real rho_s, real hf, const real* qf,
+                           real sx, real sy, real h_dry) {
+  real e = 0;
+  if (hs > h_dry) {
+    const real w = qs[0] * sx + qs[1] * sy;
+    e += rho_s * ((qs[0] * qs[0] + qs[1] * qs[1]) + w * w) / hs;
+  }
+  if (hf > h_dry) {
+    const real w = qf[0] * sx + qf[1] * sy;
+    e += dp->rho_f * ((qf[0] * qf[0] + qf[1] * qf[1]) + w * w) / hf;
+  }
+  return (real)0.5 * e;
+}
+
 __kernel void debris_stage(__constant const FlowParams* p, __constant const DebrisParams* dp,
                            __global const uchar* mask, __global const int* tile_list, __global const real* b,
                            __global const real* gp, __global const real* gn, __global const real* manning,
@@ -434,6 +452,9 @@ __kernel void debris_stage(__constant const FlowParams* p, __constant const Debr
   const real ucx = 0, ucy = 0;
 #endif
   real basal_px = 0, basal_py = 0;  // impulse the bed takes from the solids over ds [kg/(m s)]
+  // Kinetic energy per unit area before the stiff sources (their work, the energy budget's friction
+  // and drag term; out_step row 2).
+  const real ke_before = column_kinetic(dp, hsn, qs, mn.rho_s, hfn, qf, fslope[k], fslope[n + k], p->h_dry);
   uchar locked = 1;
   if (hsn > p->h_dry) {
     // The friction of the stage's own state (the thickness its bed force and pressure used): with
@@ -484,6 +505,7 @@ __kernel void debris_stage(__constant const FlowParams* p, __constant const Debr
 #if DEBRIS_CURVATURE
   if (!(hsn > p->h_dry)) Sn[7] = 0;  // no column, no flight: the next material in the cell lands
 #endif
+  const real source_work = ke_before - column_kinetic(dp, hsn, qs, mn.rho_s, hfn, qf, fslope[k], fslope[n + k], p->h_dry);
   S_out[k] = hsn;
   S_out[n + k] = qs[0];
   S_out[2 * n + k] = qs[1];
@@ -506,11 +528,15 @@ __kernel void debris_stage(__constant const FlowParams* p, __constant const Debr
   }
 #endif
   const real wf = w_out * p->dx;
+  // The sources' work reaches the end state as the wall reaction does: stage 1's through U1/2.
+  const real ww = (first_stage ? (real)0.5 : (real)1) * p->dx * p->dx * source_work;
   if (first_stage) {
     out_step[k] = wf * out_f;
     out_step[n + k] = wf * out_s;
+    out_step[2 * n + k] = ww;
   } else {
     out_step[k] += wf * out_f;
     out_step[n + k] += wf * out_s;
+    out_step[2 * n + k] += ww;
   }
 }

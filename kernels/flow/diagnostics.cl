@@ -25,7 +25,8 @@
 #define DIAG_OUTFLOW_S 8   // two-phase only: solid outflow
 #define DIAG_POTENTIAL 9   // two-phase only: potential energy g sum m (centroid height) [J]
 #define DIAG_KINETIC_V 10  // two-phase only: kinetic energy of the vertical motion m (u.grad b)^2 / 2 [J]
-#define DIAG_MAX_ROWS 11
+#define DIAG_WORK 11       // two-phase only: kinetic energy the step's basal law, drag and viscous terms took [J]
+#define DIAG_MAX_ROWS 12
 #define DIAG_IS_MAX(r) ((r) == DIAG_SPEED || (r) == DIAG_FLOW_SPEED || (r) == DIAG_WAVE_WET)
 #define TILE_CELLS (TILE * TILE)
 

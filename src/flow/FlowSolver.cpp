@@ -13,7 +13,7 @@
 namespace talus::flow {
 namespace {
 
-constexpr int kDiagnosticRows = 11;    // see kernels/flow/diagnostics.cl (7 single-phase, 11 two-phase)
+constexpr int kDiagnosticRows = 12;    // see kernels/flow/diagnostics.cl (7 single-phase, 12 two-phase)
 const compute::Range kLocal2D{kTile, kTile};
 
 std::string buildOptions(const FlowSettings& s) {
@@ -65,7 +65,8 @@ FlowSolver::FlowSolver(compute::Context& ctx, const Grid& grid, const FlowSettin
       h1_(ctx, grid.cells(), "h stage"),
       qx1_(ctx, grid.cells(), "qx stage"),
       qy1_(ctx, grid.cells(), "qy stage"),
-      outStep_(ctx, (settings.twoPhase ? 2 : 1) * grid.cells(), "outflow per step"),
+      // outflow of the water (of the fluid and the solids, and the sources' work, in the two-phase model)
+      outStep_(ctx, (settings.twoPhase ? 3 : 1) * grid.cells(), "outflow per step"),
       partial_(ctx, kDiagnosticRows * static_cast<std::size_t>(tilesX_) * tilesY_, "tile partials"),
       hMax_(ctx, grid.cells(), "h max"),
       vMax_(ctx, grid.cells(), "v max"),
@@ -275,7 +276,7 @@ void FlowSolver::computeDiagnostics() {
                                  ReduceOp::Min, ReduceOp::Max, ReduceOp::Max};
     if (settings_.twoPhase) {
       enqueueDebrisDiagnostics();
-      for (int r = 0; r < 4; ++r) ops.push_back(ReduceOp::Sum);
+      for (int r = 0; r < 5; ++r) ops.push_back(ReduceOp::Sum);
     } else {
       diagnostics_.bind(params_, mask_, tileList_, h_, qx_, qy_, slopeSpeed_, outStep_, partial_, tileWet_);
       diagnostics_.launch(tileRange(), kLocal2D);
@@ -284,6 +285,7 @@ void FlowSolver::computeDiagnostics() {
     const bool tp = settings_.twoPhase;
     diag_ = {r[0], r[1], r[2], r[3], r[4], tp ? r[7] : 0.0, tp ? r[8] : 0.0, tp ? r[9] : 0.0, tp ? r[10] : 0.0,
              r[5], r[6]};
+    if (tp) diag_.sourceWork = r[11];
   } else {
     diag_ = {};
   }

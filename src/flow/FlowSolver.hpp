@@ -57,6 +57,10 @@ struct FlowDiagnostics {
   double rain = 0;             ///< rain volume added in the last step [m^3] (docs/sources.md)
   double infiltrated = 0;      ///< volume infiltrated in the last step [m^3]
   double erodible = 0;         ///< entrainment: erodible bed volume left [m^3]
+  /// two-phase: the kinetic energy that the last step's stiff sources (the solids' basal law and the
+  /// drag, solved together; the basal viscous terms; Manning on the fluid) took from the grid phases
+  /// [J]: the work of friction and drag (negative where a moving particle bed drives the solids)
+  double sourceWork = 0;
 };
 
 /// Running maxima of the two-phase model (spec §8).

@@ -10,9 +10,11 @@
 namespace talus::sim {
 namespace {
 
-// Version 3 adds the cumulative rain and infiltration, version 2 the particle state; version 1
-// and 2 files still read (no rain, no infiltration; version 1 no particles either).
-constexpr char kMagic[8] = {'T', 'A', 'L', 'U', 'S', 'C', 'K', '3'};
+// Version 4 adds the work of friction and drag, version 3 the cumulative rain and infiltration,
+// version 2 the particle state; version 1 to 3 files still read (no work; version 1 and 2 no rain,
+// no infiltration; version 1 no particles either).
+constexpr char kMagic[8] = {'T', 'A', 'L', 'U', 'S', 'C', 'K', '4'};
+constexpr char kMagicV3[8] = {'T', 'A', 'L', 'U', 'S', 'C', 'K', '3'};
 constexpr char kMagicV2[8] = {'T', 'A', 'L', 'U', 'S', 'C', 'K', '2'};
 constexpr char kMagicV1[8] = {'T', 'A', 'L', 'U', 'S', 'C', 'K', '1'};
 
@@ -59,6 +61,7 @@ void writeCheckpoint(const std::string& path, const Checkpoint& c) {
   put(o, c.totalOutflow);
   put(o, c.totalRain);
   put(o, c.totalInfiltrated);
+  put(o, c.totalSourceWork);
   put(o, c.elapsedWall);
   putString(o, c.seriesIndex);
   putString(o, std::string(c.state.begin(), c.state.end()));
@@ -74,9 +77,10 @@ Checkpoint readCheckpoint(const std::string& path) {
   if (!r.in.read(magic, sizeof magic)) throw InputError("'" + path + "' is not a Talus checkpoint");
   const bool v1 = std::memcmp(magic, kMagicV1, sizeof magic) == 0;
   const bool v2 = std::memcmp(magic, kMagicV2, sizeof magic) == 0;
-  if (!v1 && !v2 && std::memcmp(magic, kMagic, sizeof magic) != 0)
+  const bool v3 = std::memcmp(magic, kMagicV3, sizeof magic) == 0;
+  if (!v1 && !v2 && !v3 && std::memcmp(magic, kMagic, sizeof magic) != 0)
     throw InputError("'" + path + "' is not a Talus checkpoint");
-  const char* version = v1 ? kMagicV1 : v2 ? kMagicV2 : kMagic;
+  const char* version = v1 ? kMagicV1 : v2 ? kMagicV2 : v3 ? kMagicV3 : kMagic;
   Checkpoint c;
   c.precision = r.getString(16);
   c.nx = r.get<int32_t>();
@@ -90,6 +94,7 @@ Checkpoint readCheckpoint(const std::string& path) {
     c.totalRain = r.get<double>();
     c.totalInfiltrated = r.get<double>();
   }
+  if (!v1 && !v2 && !v3) c.totalSourceWork = r.get<double>();
   c.elapsedWall = r.get<double>();
   c.seriesIndex = r.getString(1ull << 30);
   const std::string state = r.getString(1ull << 40);

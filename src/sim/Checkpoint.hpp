@@ -15,6 +15,7 @@ struct Checkpoint {
   int32_t reportIndex = 0;      ///< next series map index
   double initialVolume = 0, totalOutflow = 0;
   double totalRain = 0, totalInfiltrated = 0;  ///< cumulative sources and sinks [m^3] (version 3; 0 before)
+  double totalSourceWork = 0;   ///< two-phase: work of friction and drag so far [J] (version 4; 0 before)
   double elapsedWall = 0;       ///< wall seconds spent before the checkpoint
   std::string seriesIndex;      ///< contents of series/index.csv so far
   std::vector<char> state;      ///< FlowSolver::saveState()

@@ -12,8 +12,8 @@ namespace {
 constexpr int kWaterArrays = 19;     // bed, g_p, g_n, Manning, slope speed, bed slope (2), h/qx/qy and
                                      // their stage copies, outflow, h max, v max, arrival, infiltration
                                      // capacity and infiltrated depth
-constexpr int kTwoPhaseArrays = 25;  // solid state at two stages (2 x 8), delta, maxima (7),
-                                     // outflow of the solids
+constexpr int kTwoPhaseArrays = 26;  // solid state at two stages (2 x 8), delta, maxima (7),
+                                     // outflow of the solids, the sources' work per step
 constexpr int kParticleBedArrays = 5;  // particle bed (3) and its impulse (2)
 constexpr int kHostOutputMaps = 4;     // h, qx, qy and the speed of a report, in double
 

@@ -16,7 +16,7 @@ namespace {
 constexpr const char* kCsvHeader =
     "step,time_s,dt_s,volume_m3,outflow_m3,cumulative_outflow_m3,balance_error,kinetic_energy_J,max_wave_speed_m_s,"
     "fluid_volume_m3,solid_volume_m3,fluid_outflow_m3,solid_outflow_m3,"
-    "potential_energy_J,vertical_kinetic_J,energy_released_J,energy_lost_J,"
+    "potential_energy_J,vertical_kinetic_J,energy_released_J,energy_lost_J,friction_drag_work_J,"
     "particles,particle_mass_kg,particle_outflow_kg,particle_kinetic_J,cumulative_rain_m3,cumulative_infiltrated_m3,wall_s";
 
 /// Total volume (both phases) and total outflow of the last step.
@@ -108,6 +108,7 @@ Simulation::Simulation(const Scene& scene, const io::RunConfig& config, const st
   totalOutflow_ = c.totalOutflow;
   totalRain_ = c.totalRain;
   totalInfiltrated_ = c.totalInfiltrated;
+  totalSourceWork_ = c.totalSourceWork;
   if (solver_->entrainment()) {  // what was left at the checkpoint plus what the bed lost before it
     double eroded = 0;
     for (double d : solver_->bedChange()) eroded -= d;
@@ -132,6 +133,7 @@ void Simulation::writeCheckpoint(double wallSeconds) {
   c.totalOutflow = totalOutflow_;
   c.totalRain = totalRain_;
   c.totalInfiltrated = totalInfiltrated_;
+  c.totalSourceWork = totalSourceWork_;
   c.elapsedWall = wallSeconds;
   c.seriesIndex = seriesIndex_;
   c.state = solver_->saveState();
@@ -231,22 +233,24 @@ Progress Simulation::stepOnce() {
   totalOutflow_ += totalOutflow(d);
   totalRain_ += d.rain;
   totalInfiltrated_ += d.infiltrated;
+  totalSourceWork_ += d.sourceWork;
   const double volume = totalVolume(d);
   const double balance = volumeBalance(volume);
   // The single-phase diagnostics give kinetic energy per unit density; the two-phase ones joules.
   const double kinetic = solver_->twoPhase() ? d.kinetic : scene_.settings.debris.fluidDensity * d.kinetic;
   // Energy (two-phase; zeros for water alone): potential energy, kinetic energy of the motion along
-  // the bed's slope, potential energy released since the start and the mechanical energy lost (to
-  // friction, drag, numerical dissipation and through open boundaries).
+  // the bed's slope, potential energy released since the start, the mechanical energy lost (to
+  // friction, drag, impacts on walls, numerical dissipation and through open boundaries) and, of
+  // that, the work of friction and drag (the stiff sources' kinetic-energy change, summed).
   const double released = solver_->twoPhase() ? initialPotential_ - d.potential : 0.0;
   const double lost = solver_->twoPhase() ? initialMechanical_ - (d.kinetic + d.kineticVertical + d.potential) : 0.0;
   lastReleased_ = released;
   lastLost_ = lost;
   char line[640];
   std::snprintf(line, sizeof line,
-                "%lld,%.9g,%.6g,%.12g,%.6g,%.12g,%.3e,%.6g,%.6g,%.12g,%.12g,%.6g,%.6g,%.12g,%.6g,%.9g,%.9g,", steps_,
+                "%lld,%.9g,%.6g,%.12g,%.6g,%.12g,%.3e,%.6g,%.6g,%.12g,%.12g,%.6g,%.6g,%.12g,%.6g,%.9g,%.9g,%.9g,", steps_,
                 solver_->time(), dt, volume, totalOutflow(d), totalOutflow_, balance, kinetic, d.maxSpeed, d.volume,
-                d.volumeSolid, d.outflow, d.outflowSolid, d.potential, d.kineticVertical, released, lost);
+                d.volumeSolid, d.outflow, d.outflowSolid, d.potential, d.kineticVertical, released, lost, totalSourceWork_);
   char wallText[32];
   std::snprintf(wallText, sizeof wallText, ",%.4f", wall());  // wall time last: the one column that differs run to run
   char sourcesText[64];

@@ -127,6 +127,7 @@ class Simulation {
   double totalEntrained() const;
   double initialPotential_ = 0, initialMechanical_ = 0;  ///< two-phase energy at the initial state [J]
   double lastReleased_ = 0, lastLost_ = 0;              ///< energy columns of the last step [J]
+  double totalSourceWork_ = 0;  ///< two-phase: work of friction and drag since the start [J] (restored on resume)
   std::string seriesIndex_ = "index,time_s,h_file,v_file\n";
   int checkpoints_ = 0;
   // State of the step-wise loop (begin() .. finish()).

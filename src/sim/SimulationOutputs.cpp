@@ -226,7 +226,8 @@ std::string Simulation::summaryJson(const RunSummary& s, Ending ending) const {
     const flow::FlowDiagnostics& dg = solver_->diagnostics();
     o << ",\n  \"energy\": {\"kinetic_J\": " << dg.kinetic << ", \"vertical_kinetic_J\": " << dg.kineticVertical
       << ", \"potential_J\": " << dg.potential << ", \"potential_released_J\": " << lastReleased_
-      << ", \"mechanical_lost_J\": " << lastLost_ << "}";
+      << ", \"mechanical_lost_J\": " << lastLost_ << ", \"friction_drag_work_J\": " << totalSourceWork_
+      << ", \"other_loss_J\": " << lastLost_ - totalSourceWork_ << "}";
   }
   if (particles_)
     o << ",\n  \"particles\": {\"count\": " << particles_->count() << ", \"initial_mass_kg\": " << particles_->initialMass()

@@ -111,6 +111,7 @@ TEST(Checkpoint, FileRoundTripAndCorruption) {
   c.totalOutflow = 0.125;
   c.totalRain = 2.75;
   c.totalInfiltrated = 0.5;
+  c.totalSourceWork = 6.25;
   c.elapsedWall = 3.5;
   c.seriesIndex = "index,time_s\n0,0\n";
   c.state = {'a', '\0', 'b', '\x7f'};
@@ -127,26 +128,34 @@ TEST(Checkpoint, FileRoundTripAndCorruption) {
   EXPECT_EQ(r.totalOutflow, 0.125);
   EXPECT_EQ(r.totalRain, 2.75);
   EXPECT_EQ(r.totalInfiltrated, 0.5);
+  EXPECT_EQ(r.totalSourceWork, 6.25);
   EXPECT_EQ(r.elapsedWall, 3.5);
   EXPECT_EQ(r.seriesIndex, c.seriesIndex);
   EXPECT_EQ(r.state, c.state);
   const std::string bytes = readFile(path);
-  {
-    // A version 2 file (before rain and infiltration): the same layout without the two totals
-    // after the outflow, magic "TALUSCK2" at both ends. It reads with zero totals.
-    const std::size_t totals = 8 + (8 + c.precision.size()) + 4 + 4 + 8 + 8 + 4 + 8 + 8;
-    std::string v2 = bytes.substr(0, totals) + bytes.substr(totals + 16);
-    v2[7] = '2';
-    v2[v2.size() - 1] = '2';
-    const std::string oldPath = (t.path / "v2.bin").string();
-    std::ofstream(oldPath, std::ios::binary).write(v2.data(), static_cast<std::streamsize>(v2.size()));
-    const sim::Checkpoint o = sim::readCheckpoint(oldPath);
-    EXPECT_EQ(o.totalOutflow, 0.125);
-    EXPECT_EQ(o.totalRain, 0.0);
-    EXPECT_EQ(o.totalInfiltrated, 0.0);
-    EXPECT_EQ(o.elapsedWall, 3.5);
-    EXPECT_EQ(o.state, c.state);
-  }
+  const std::size_t totals = 8 + (8 + c.precision.size()) + 4 + 4 + 8 + 8 + 4 + 8 + 8;
+  // An older file: this one's bytes without `length` bytes from `from`, magic "TALUSCK<version>" at
+  // both ends.
+  auto older = [&](char version, std::size_t from, std::size_t length) {
+    std::string old = bytes.substr(0, from) + bytes.substr(from + length);
+    old[7] = old[old.size() - 1] = version;
+    const std::string oldPath = (t.path / (std::string("v") + version + ".bin")).string();
+    std::ofstream(oldPath, std::ios::binary).write(old.data(), static_cast<std::streamsize>(old.size()));
+    return sim::readCheckpoint(oldPath);
+  };
+  // Version 3 (before the work of friction and drag, after the infiltration) reads with zero work.
+  const sim::Checkpoint o3 = older('3', totals + 16, 8);
+  EXPECT_EQ(o3.totalInfiltrated, 0.5);
+  EXPECT_EQ(o3.totalSourceWork, 0.0);
+  EXPECT_EQ(o3.elapsedWall, 3.5);
+  EXPECT_EQ(o3.state, c.state);
+  // Version 2 (before rain and infiltration too) reads with zero totals.
+  const sim::Checkpoint o2 = older('2', totals, 24);
+  EXPECT_EQ(o2.totalOutflow, 0.125);
+  EXPECT_EQ(o2.totalRain, 0.0);
+  EXPECT_EQ(o2.totalInfiltrated, 0.0);
+  EXPECT_EQ(o2.elapsedWall, 3.5);
+  EXPECT_EQ(o2.state, c.state);
   // A truncated checkpoint (a kill during a copy, a full disk) is refused by name, at every length.
   for (std::size_t cut : {std::size_t{0}, std::size_t{5}, std::size_t{20}, bytes.size() - 1}) {
     std::ofstream(path, std::ios::binary | std::ios::trunc).write(bytes.data(), static_cast<std::streamsize>(cut));
