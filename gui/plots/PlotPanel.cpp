@@ -8,13 +8,15 @@ namespace talus::gui {
 PlotPanel::PlotPanel(QWidget* parent) : QWidget(parent) {
   volume_ = new TimeSeriesPlot("volume", "m³");
   outflow_ = new TimeSeriesPlot("outflow (cumulative)", "m³");
-  kinetic_ = new TimeSeriesPlot("kinetic energy", "J");
+  kinetic_ = new TimeSeriesPlot("energy", "J");
   front_ = new TimeSeriesPlot("front distance from the release", "m");
   total_ = volume_->addSeries("total", QColor(60, 60, 60));
   fluid_ = volume_->addSeries("fluid", QColor(30, 110, 220));
   solid_ = volume_->addSeries("solid", QColor(160, 90, 30));
   out_ = outflow_->addSeries("outflow", QColor(200, 60, 40));
   energy_ = kinetic_->addSeries("kinetic", QColor(220, 140, 20));
+  released_ = kinetic_->addSeries("released", QColor(60, 60, 60));
+  work_ = kinetic_->addSeries("friction and drag", QColor(160, 90, 30));
   distance_ = front_->addSeries("front", QColor(120, 60, 200));
   auto* grid = new QGridLayout(this);
   grid->addWidget(volume_, 0, 0);
@@ -31,6 +33,10 @@ void PlotPanel::addProgress(const RunProgress& p, bool twoPhase) {
   }
   outflow_->append(out_, p.time, p.cumulativeOutflow);
   kinetic_->append(energy_, p.time, p.kineticEnergy);
+  if (twoPhase) {
+    kinetic_->append(released_, p.time, p.energyReleased);
+    kinetic_->append(work_, p.time, p.frictionWork);
+  }
 }
 
 void PlotPanel::addSnapshot(const sim::ViewSnapshot& s) { front_->append(distance_, s.time, s.frontDistance); }
@@ -44,6 +50,8 @@ void PlotPanel::setDiagnostics(const DiagnosticsTable& table) {
   const std::vector<double>* water = table.column("volume_m3");
   const std::vector<double>* out = table.column("cumulative_outflow_m3");
   const std::vector<double>* energy = table.column("kinetic_energy_J");
+  const std::vector<double>* released = table.column("energy_released_J");
+  const std::vector<double>* work = table.column("friction_drag_work_J");
   const bool twoPhase = solid && std::any_of(solid->begin(), solid->end(), [](double v) { return v != 0; });
   for (std::size_t r = 0; r < t->size(); ++r) {
     const double time = (*t)[r];
@@ -55,6 +63,8 @@ void PlotPanel::setDiagnostics(const DiagnosticsTable& table) {
     }
     if (out) outflow_->append(out_, time, (*out)[r]);
     if (energy) kinetic_->append(energy_, time, (*energy)[r]);
+    if (twoPhase && released) kinetic_->append(released_, time, (*released)[r]);
+    if (twoPhase && work) kinetic_->append(work_, time, (*work)[r]);
   }
 }
 

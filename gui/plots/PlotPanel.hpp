@@ -1,4 +1,5 @@
-// The run's time series, drawn live: volume per phase, cumulative outflow, kinetic energy and the
+// The run's time series, drawn live: volume per phase, cumulative outflow, the energy (kinetic; in
+// the two-phase model also the potential energy released and the work of friction and drag) and the
 // position of the flow front.
 #pragma once
 #include <QWidget>
@@ -20,16 +21,16 @@ class PlotPanel : public QWidget {
   /// Adds the front position of a snapshot.
   void addSnapshot(const sim::ViewSnapshot& s);
   /// Replaces the series by the rows of a finished run's diagnostics.csv (volumes, cumulative
-  /// outflow, kinetic energy; the front distance is not in the file and stays empty).
+  /// outflow, energies; the front distance is not in the file and stays empty).
   void setDiagnostics(const DiagnosticsTable& table);
   void clear();
   const TimeSeriesPlot& volumePlot() const { return *volume_; }
   const TimeSeriesPlot& outflowPlot() const { return *outflow_; }
-  const TimeSeriesPlot& kineticPlot() const { return *kinetic_; }
+  const TimeSeriesPlot& energyPlot() const { return *kinetic_; }
 
  private:
   TimeSeriesPlot *volume_, *outflow_, *kinetic_, *front_;
-  int fluid_, solid_, total_, out_, energy_, distance_;
+  int fluid_, solid_, total_, out_, energy_, released_, work_, distance_;
 };
 
 }  // namespace talus::gui

@@ -21,6 +21,11 @@ class TimeSeriesPlot : public QWidget {
   void clear();
   /// Number of points held by a series.
   std::size_t size(int series) const { return series_[static_cast<std::size_t>(series)].points.size(); }
+  /// The last point of a series (t, value); (0, 0) while it has none.
+  QPointF last(int series) const {
+    const auto& p = series_[static_cast<std::size_t>(series)].points;
+    return p.empty() ? QPointF() : p.back();
+  }
   QSize sizeHint() const override { return {320, 180}; }
 
  protected:

@@ -137,6 +137,9 @@ void RunController::onStep(const sim::Progress& p) {
   r.cumulativeOutflow = p.cumulativeOutflow;
   r.balanceError = p.balanceError;
   r.kineticEnergy = p.kineticEnergy;
+  r.energyReleased = p.energyReleased;
+  r.frictionWork = p.frictionWork;
+  r.particleMass = p.particleMass;
   const bool paused = control_ && control_->isPaused();
   {
     std::lock_guard<std::mutex> lock(progressMutex_);
@@ -155,12 +158,14 @@ void RunController::onStep(const sim::Progress& p) {
     last_ = now;
     if (now.wallSeconds - lastLogWall_ >= kLogInterval) {
       lastLogWall_ = now.wallSeconds;
-      emit log(QString("t = %1 s, step %2: volume %3 m3, outflow %4 m3, mass balance error %5")
-                   .arg(now.time, 0, 'f', 2)
-                   .arg(now.steps)
-                   .arg(now.fluidVolume + now.solidVolume, 0, 'g', 8)
-                   .arg(now.cumulativeOutflow, 0, 'g', 6)
-                   .arg(now.balanceError, 0, 'e', 2));
+      QString line = QString("t = %1 s, step %2: volume %3 m3, outflow %4 m3, mass balance error %5")
+                         .arg(now.time, 0, 'f', 2)
+                         .arg(now.steps)
+                         .arg(now.fluidVolume + now.solidVolume, 0, 'g', 8)
+                         .arg(now.cumulativeOutflow, 0, 'g', 6)
+                         .arg(now.balanceError, 0, 'e', 2);
+      if (now.particleMass > 0) line += QString(", particles %1 kg").arg(now.particleMass, 0, 'g', 8);
+      emit log(line);
     }
     emit progress(now);
   }, Qt::QueuedConnection);

@@ -28,6 +28,8 @@ struct RunProgress {
   double cumulativeOutflow = 0;                 ///< [m^3]
   double balanceError = 0;                      ///< relative
   double kineticEnergy = 0;                     ///< [J]
+  double energyReleased = 0, frictionWork = 0;  ///< two-phase: potential energy released, work of friction and drag [J]
+  double particleMass = 0;                      ///< [kg] (0 without particles)
 };
 
 class RunController : public QObject {

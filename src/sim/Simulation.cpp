@@ -279,7 +279,8 @@ Progress Simulation::stepOnce() {
   if (scene_.restFraction > 0 && peakKinetic_ > 0 && allKinetic < scene_.restFraction * peakKinetic_) {
     atRest_ = true;  // the flow has come to rest: the final maps are those of this state
   }
-  return {solver_->time(), t0, tEnd, steps_, wall(), dt, &d, volume, totalOutflow_, balance, allKinetic};
+  return {solver_->time(), t0, tEnd, steps_, wall(), dt, &d, volume, totalOutflow_, balance, allKinetic,
+          released, totalSourceWork_, particles_ ? particles_->mass() : 0.0};
 }
 
 void Simulation::guardedWrite(const std::function<void()>& write) {

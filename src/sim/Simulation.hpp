@@ -28,6 +28,9 @@ struct Progress {
   double cumulativeOutflow = 0;  ///< volume that has left the domain so far [m^3]
   double balanceError = 0;       ///< (volume + outflow + infiltrated - initial - rain) / (initial + rain), cumulative
   double kineticEnergy = 0;      ///< [J], grid phases and particles
+  double energyReleased = 0;     ///< two-phase: potential energy released since the start [J]
+  double frictionWork = 0;       ///< two-phase: work of friction and drag since the start [J]
+  double particleMass = 0;       ///< mass of the particles in the domain [kg] (0 without particles)
 };
 
 /// What a finished run reports (also written to summary.json).

@@ -94,7 +94,7 @@ TEST(OpenResults, TheLayerListOffersEveryMapAndThePlotsHoldTheDiagnostics) {
   ASSERT_GT(rows, 10u);
   EXPECT_EQ(w.plots().volumePlot().size(0), rows);
   EXPECT_EQ(w.plots().outflowPlot().size(0), rows);
-  EXPECT_EQ(w.plots().kineticPlot().size(0), rows);
+  EXPECT_EQ(w.plots().energyPlot().size(0), rows);
   // The maps are on screen: the DEM's terrain under them, the maximum thickness as it is on disk.
   ASSERT_TRUE(w.viewer().snapshot());
   const std::vector<float>* hmax = w.viewer().snapshot()->layer("hfmax");
@@ -105,6 +105,40 @@ TEST(OpenResults, TheLayerListOffersEveryMapAndThePlotsHoldTheDiagnostics) {
       << w.logText().toStdString();
   EXPECT_FALSE(w.windowTitle().contains("partial"));
   EXPECT_TRUE(w.status().text().startsWith("results")) << w.status().text().toStdString();
+}
+
+// A two-phase run's energy plot holds its energy budget: the kinetic energy, the potential energy
+// released and the work of friction and drag (series 0, 1, 2), one point per row of diagnostics.csv,
+// the last one the file's last row (read here independently).
+TEST(OpenResults, TwoPhaseResultsPlotTheEnergyBudget) {
+  const fs::path out = writeResults(scratchDir("results_energy"), "Include Initial Solids=1\nInitial Solid Height=water.tif\n");
+  MainWindow w;
+  w.setReportInDialogs(false);
+  w.show();
+  QString problems;
+  ASSERT_TRUE(w.openResults(QString::fromStdString(out.string()), &problems)) << problems.toStdString();
+  std::istringstream in(readText(out / "diagnostics.csv"));
+  std::string header, line, last;
+  std::getline(in, header);
+  while (std::getline(in, line))
+    if (!line.empty()) last = line;
+  auto column = [&](const std::string& row, const std::string& name) {
+    std::istringstream h(header), r(row);
+    std::string key, value;
+    while (std::getline(h, key, ',') && std::getline(r, value, ','))
+      if (key == name) return std::stod(value);
+    ADD_FAILURE() << "no column " << name;
+    return 0.0;
+  };
+  const auto& plot = w.plots().energyPlot();
+  const std::size_t rows = diagnosticsRows(out);
+  for (int series : {0, 1, 2}) EXPECT_EQ(plot.size(series), rows) << series;
+  const double released = column(last, "energy_released_J"), work = column(last, "friction_drag_work_J");
+  EXPECT_GT(released, 0.0);
+  EXPECT_GT(work, 0.0);
+  EXPECT_DOUBLE_EQ(plot.last(1).y(), released);
+  EXPECT_DOUBLE_EQ(plot.last(2).y(), work);
+  EXPECT_DOUBLE_EQ(plot.last(0).y(), column(last, "kinetic_energy_J"));
 }
 
 TEST(OpenResults, MovingTheSliderShowsThatFramesRaster) {

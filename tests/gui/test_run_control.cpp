@@ -5,7 +5,9 @@
 #include <atomic>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
+#include <string>
 
 #include "GuiTestSupport.hpp"
 #include "io/RasterIO.hpp"
@@ -86,4 +88,55 @@ TEST(RunControl, StopWritesAStoppedSummary) {
   std::ostringstream s;
   s << in.rdbuf();
   EXPECT_NE(s.str().find("\"status\": \"stopped\""), std::string::npos) << s.str();
+}
+
+// What the window's log and plots receive with each step (sim::Progress): the mass of the particles
+// of a block slide (every particle stays in the walled domain, so the seeded mass throughout, as
+// summary.json reports it) and, for a two-phase run, the energy budget that diagnostics.csv holds.
+TEST(RunControl, ProgressCarriesTheParticleMassAndTheEnergyBudget) {
+  {
+    const fs::path dir = guitest::scratchDir("progress_particles");
+    io::RunConfig config = io::RunConfig::load(std::string(TALUS_TEST_DATA_DIR) + "/block_slide/block_slide.run",
+                                               talusRunKeys());
+    config.set("End Time=0.02");
+    const sim::Scene scene = sim::loadScene(config);
+    sim::Simulation s(scene, config, (dir / "out").string(), sim::OutputMode::New);
+    double first = -1, last = -1;
+    s.run([&](const sim::Progress& p) {
+      if (first < 0) first = p.particleMass;
+      last = p.particleMass;
+    });
+    const std::string summary = guitest::readText(dir / "out" / "summary.json");
+    const std::string key = "\"initial_mass_kg\": ";
+    const std::size_t at = summary.find(key);
+    ASSERT_NE(at, std::string::npos) << summary;
+    const double seeded = std::stod(summary.substr(at + key.size()));
+    EXPECT_GT(seeded, 0.0);
+    EXPECT_DOUBLE_EQ(first, seeded);
+    EXPECT_DOUBLE_EQ(last, seeded);
+  }
+  {
+    const fs::path dir = guitest::scratchDir("progress_energy");
+    const std::string runFile = guitest::writeExampleRunFile(
+        dir, "End Time=0.05\nInclude Initial Solids=1\nInitial Solid Height=water.tif\n");
+    io::RunConfig config = io::RunConfig::load(runFile, talusRunKeys());
+    const sim::Scene scene = sim::loadScene(config);
+    sim::Simulation s(scene, config, (dir / "out").string(), sim::OutputMode::New);
+    sim::Progress last;
+    s.run([&](const sim::Progress& p) { last = p; });
+    std::istringstream csv(guitest::readText(dir / "out" / "diagnostics.csv"));
+    std::string header, line, row;
+    std::getline(csv, header);
+    while (std::getline(csv, line))
+      if (!line.empty()) row = line;
+    std::map<std::string, double> values;
+    std::istringstream h(header), r(row);
+    for (std::string key, value; std::getline(h, key, ',') && std::getline(r, value, ',');) values[key] = std::stod(value);
+    EXPECT_GT(last.energyReleased, 0.0);
+    EXPECT_GT(last.frictionWork, 0.0);
+    // (the file holds 9 significant digits)
+    EXPECT_NEAR(last.energyReleased, values["energy_released_J"], 1e-8 * last.energyReleased);
+    EXPECT_NEAR(last.frictionWork, values["friction_drag_work_J"], 1e-8 * last.frictionWork);
+    EXPECT_EQ(last.particleMass, 0.0);
+  }
 }
