@@ -267,14 +267,24 @@ Raster readRaster(const std::string& path, const RasterReadOptions& options, std
     // huge grid then fails here instead of after gigabytes were allocated and zero-filled. ASCII
     // grids need at least two bytes a cell; other formats (random access) must yield their last row.
     // A crafted header can declare blocks (strips, tiles) far larger than the raster, which GDAL
-    // would allocate whole on the first read (seen by the fuzzer: 4 GB for a 5-column file).
+    // would allocate whole on the first read (seen by the fuzzer: 4 GB for a 5-column file). A
+    // pixel-interleaved block holds every band's values, so its bytes count all bands (seen by the
+    // fuzzer: a 65282x2 strip of 3584 Float64 bands, 3.7 GB, in a 436-byte file). Allowed: four
+    // times the raster's own Float64 values, and at least 32 MiB.
     int bx = 0, by = 0;
     band->GetBlockSize(&bx, &by);
     const unsigned long long blockCells = static_cast<unsigned long long>(std::max(bx, 0)) *
                                           static_cast<unsigned long long>(std::max(by, 0));
-    if (blockCells > std::max<unsigned long long>(4ull * cells, 1ull << 22))
+    const char* interleave = ds->GetMetadataItem("INTERLEAVE", "IMAGE_STRUCTURE");
+    const unsigned long long samples =
+        interleave && std::string(interleave) == "PIXEL" ? static_cast<unsigned long long>(std::max(ds->GetRasterCount(), 1)) : 1ull;
+    const unsigned long long blockBytes =
+        blockCells * samples * static_cast<unsigned long long>(std::max(GDALGetDataTypeSizeBytes(band->GetRasterDataType()), 1));
+    if (blockBytes > std::max<unsigned long long>(4ull * cells, 1ull << 22) * sizeof(double))
       throw InputError("raster '" + path + "' declares blocks of " + std::to_string(bx) + "x" + std::to_string(by) +
-                       " cells for a " + std::to_string(nx) + "x" + std::to_string(ny) + " raster (corrupt header?)");
+                       " cells" + (samples > 1 ? " of " + std::to_string(samples) + " interleaved bands" : std::string()) +
+                       " (" + formatBytes(static_cast<double>(blockBytes)) + " each) for a " + std::to_string(nx) + "x" +
+                       std::to_string(ny) + " raster (corrupt header?)");
     const std::string driver = ds->GetDriver() ? ds->GetDriver()->GetDescription() : "";
     std::error_code ec;
     const auto bytes = std::filesystem::file_size(path, ec);

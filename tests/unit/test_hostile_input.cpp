@@ -429,14 +429,19 @@ TEST_F(HostileInput, OutputFolderInUnwritableLocationExits2) {
 
 // Found by the raster fuzzer in CI: a 257-byte TIFF whose strip is declared 2^32 rows high made GDAL
 // allocate 4 GB on the first read. readRaster must refuse it by name before any read.
+// And a 436-byte TIFF of 65282 x 2 cells with 3584 pixel-interleaved Float64 bands in one strip:
+// GDAL reads the whole interleaved block (3.7 GB) to give band 1.
 TEST_F(HostileInput, TiffDeclaringHugeBlocksIsRefusedBeforeReading) {
-  const std::string input = slurp(std::string(TALUS_TEST_DATA_DIR) + "/../tests/data/oom_huge_strip.tif.bin");
-  ASSERT_GT(input.size(), 1u) << "tests/data/oom_huge_strip.tif.bin missing";
-  const std::string file = write("huge_strip.tif", input.substr(1));  // byte 0 chose the extension
-  try {
-    talus::io::readRaster(file);
-    ADD_FAILURE() << "a TIFF with absurd strip sizes was accepted";
-  } catch (const talus::InputError& e) {
-    EXPECT_TRUE(contains(e.what(), file)) << e.what();
+  for (const char* name : {"oom_huge_strip.tif.bin", "oom_interleaved_bands.tif.bin"}) {
+    const std::string input = slurp(std::string(TALUS_TEST_DATA_DIR) + "/../tests/data/" + name);
+    ASSERT_GT(input.size(), 1u) << "tests/data/" << name << " missing";
+    const std::string file = write(std::string(name) + ".tif", input.substr(1));  // byte 0 chose the extension
+    try {
+      talus::io::readRaster(file);
+      ADD_FAILURE() << name << ": a TIFF with absurd block sizes was accepted";
+    } catch (const talus::InputError& e) {
+      EXPECT_TRUE(contains(e.what(), file)) << e.what();
+      EXPECT_TRUE(contains(e.what(), "declares")) << e.what();
+    }
   }
 }
