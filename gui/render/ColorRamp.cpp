@@ -7,8 +7,13 @@ namespace talus::gui {
 
 namespace {
 
-// Control points chosen by hand: each ramp runs from a light or dark end to a saturated one and
-// keeps away from the terrain's greys and browns, so flow stays visible over any hillshade.
+// Control points: each ramp runs from a light or dark end to a saturated one and keeps away from the
+// terrain's greys and browns, so flow stays visible over any hillshade. The ramps a layer gets by
+// default (defaultFor) change lightness monotonically from end to end, so they read the same to
+// people with any colour-vision deficiency (which confuse hues, not lightness): water and heat as
+// drawn here, time the plasma and other units the viridis colour map (van der Walt & Smith 2015,
+// matplotlib; five of their published stops), fractions ColorBrewer's BuPu (Harrower & Brewer
+// 2003). "spectral" (a rainbow, whose yellow is lighter than both its ends) stays for who asks.
 struct RampDef {
   const char* name;
   std::vector<std::pair<double, std::array<int, 3>>> stops;
@@ -20,8 +25,12 @@ const std::vector<RampDef>& ramps() {
       {"heat", {{0.0, {255, 245, 150}}, {0.35, {255, 170, 40}}, {0.7, {220, 50, 30}}, {1.0, {110, 0, 60}}}},
       {"spectral", {{0.0, {50, 60, 200}}, {0.25, {40, 180, 220}}, {0.5, {120, 220, 90}},
                     {0.75, {250, 200, 40}}, {1.0, {215, 30, 40}}}},
-      {"solids", {{0.0, {230, 250, 200}}, {0.5, {140, 200, 60}}, {1.0, {150, 40, 20}}}},
-      {"time", {{0.0, {255, 60, 200}}, {0.5, {120, 80, 230}}, {1.0, {20, 200, 220}}}},
+      {"solids", {{0.0, {237, 248, 251}}, {0.25, {179, 205, 227}}, {0.5, {140, 150, 198}}, {0.75, {136, 86, 167}},
+                  {1.0, {129, 15, 124}}}},
+      {"time", {{0.0, {13, 8, 135}}, {0.25, {126, 3, 168}}, {0.5, {204, 71, 120}}, {0.75, {248, 149, 64}},
+                {1.0, {240, 249, 33}}}},
+      {"viridis", {{0.0, {68, 1, 84}}, {0.25, {59, 82, 139}}, {0.5, {33, 145, 140}}, {0.75, {94, 201, 98}},
+                   {1.0, {253, 231, 37}}}},
   };
   return defs;
 }
@@ -49,7 +58,7 @@ QString ColorRamp::defaultFor(const QString& unit) {
   if (unit == "m/s") return "heat";
   if (unit == "s") return "time";
   if (unit == "-") return "solids";
-  return "spectral";
+  return "viridis";
 }
 
 QColor ColorRamp::at(double t) const {
