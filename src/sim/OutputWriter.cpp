@@ -164,6 +164,11 @@ std::string OutputWriter::keptDiagnostics(const std::string& header, long long r
   std::ostringstream all;
   all << in.rdbuf();
   const std::string text = all.str();
+  // Rows of other columns (a run started by another Talus version) would not continue this header.
+  const std::string own = text.substr(0, text.find('\n'));
+  if (own != header)
+    throw InputError("cannot resume: '" + path("diagnostics.csv") + "' has other columns than this version of Talus " +
+                     "writes (another version started the run); resume it with that version, or run it again");
   // Complete lines end with '\n'; a row cut by a kill has none and is dropped.
   std::string kept = header + "\n";
   long long lines = 0;

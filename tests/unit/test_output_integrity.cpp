@@ -167,6 +167,26 @@ TEST_F(OutputIntegrity, AFailedResumeChangesNothing) {
   EXPECT_EQ(slurp(dir_ / "out/diagnostics.csv"), csv);
 }
 
+// A run whose diagnostics.csv has other columns (started by another version of Talus: e.g. before
+// friction_drag_work_J) is not resumed: its rows would not continue the header. The refusal names
+// the file, and nothing in the folder changes.
+TEST_F(OutputIntegrity, ResumingDiagnosticsOfOtherColumnsIsRefused) {
+  talus::test::writeCliScene(dir_, "Checkpoint Interval=0.01\n");
+  ASSERT_EQ(talus("run case.run").status, 0);
+  std::string csv = slurp(dir_ / "out/diagnostics.csv");
+  const std::string column = "friction_drag_work_J,";
+  ASSERT_NE(csv.find(column), std::string::npos);
+  csv.erase(csv.find(column), column.size());  // the header of the version before
+  { std::ofstream(dir_ / "out/diagnostics.csv", std::ios::binary | std::ios::trunc) << csv; }
+  const std::string summary = slurp(dir_ / "out/summary.json");
+  const Outcome r = talus("run --resume out --set \"End Time=0.1\"");
+  EXPECT_EQ(r.status, 2) << r;
+  EXPECT_TRUE(contains(r.err, "diagnostics.csv")) << r;
+  EXPECT_TRUE(contains(r.err, "other columns")) << r;
+  EXPECT_EQ(slurp(dir_ / "out/summary.json"), summary);
+  EXPECT_EQ(slurp(dir_ / "out/diagnostics.csv"), csv);
+}
+
 // The particle layer written at the start time holds the particles' state, not uninitialised device
 // memory (before: thickness -1e6 .. 3e13 m, sqrt(J2) up to 1e48 Pa, different every run): two runs
 // write the same layer, with thickness between 0 and the release's 2.5 m column (solids and
