@@ -17,9 +17,12 @@ constexpr int kSide = 160;                     ///< preview size [pixels]
 constexpr std::size_t kMaxCells = 25'000'000;  ///< larger rasters get no preview (too slow to read here)
 }  // namespace
 
-MapPreview::MapPreview(QWidget* parent) : QLabel(parent) {
-  setVisible(false);
-  setWordWrap(true);
+MapPreview::MapPreview(QWidget* parent) : QLabel(parent) { setVisible(false); }
+
+void MapPreview::showMessage(const QString& text) {
+  setPixmap({});
+  setWordWrap(true);  // a long reason wraps
+  setText(text);
 }
 
 void MapPreview::showRaster(const QString& path) {
@@ -33,13 +36,11 @@ void MapPreview::showRaster(const QString& path) {
   }
   setVisible(true);
   if (!info.isFile()) {
-    setPixmap({});
-    setText("(no preview: file not found)");
+    showMessage("(no preview: file not found)");
     return;
   }
   if (static_cast<std::size_t>(info.size()) > kMaxCells * 8) {
-    setPixmap({});
-    setText("(no preview: large file)");
+    showMessage("(no preview: large file)");
     return;
   }
   try {
@@ -64,6 +65,9 @@ void MapPreview::showRaster(const QString& path) {
         const int g = hi > lo ? int(std::lround(255 * (r.values[k] - lo) / (hi - lo))) : 128;
         img.setPixel(x, y, qRgb(g, g, g));
       }
+    // Word wrap off for a picture: a word-wrapping label asks its layout for a height for its width,
+    // which a picture does not give (-1), and the preview was laid out 0 px high.
+    setWordWrap(false);
     setPixmap(QPixmap::fromImage(img));
     setToolTip(QString("%1 x %2 cells of %3 m, values %4 .. %5 (black .. white); nodata pink")
                    .arg(r.grid.nx)
@@ -72,8 +76,7 @@ void MapPreview::showRaster(const QString& path) {
                    .arg(lo)
                    .arg(hi));
   } catch (const std::exception& e) {
-    setPixmap({});
-    setText(QString("(no preview: %1)").arg(e.what()));
+    showMessage(QString("(no preview: %1)").arg(e.what()));
   }
 }
 

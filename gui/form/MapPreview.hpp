@@ -15,6 +15,7 @@ class MapPreview : public QLabel {
   void showRaster(const QString& path);
 
  private:
+  void showMessage(const QString& text);  ///< a line saying why there is no picture
   QString shown_;
 };
 

@@ -1,5 +1,10 @@
 #include "GuiTestSupport.hpp"
 
+#include <gtest/gtest.h>
+#include <QTest>
+
+#include "app/MainWindow.hpp"
+
 #include <QAbstractButton>
 #include <QApplication>
 #include <QCoreApplication>
@@ -100,6 +105,15 @@ void chooseInFileDialog(QFileDialog* dialog, const std::filesystem::path& file) 
   if (auto* name = dialog->findChild<QLineEdit*>("fileNameEdit")) name->setText(QString::fromStdString(file.filename().string()));
   else dialog->selectFile(QString::fromStdString(file.string()));
   QMetaObject::invokeMethod(dialog, "accept");  // a protected override of QDialog's slot
+}
+
+void showExampleWindow(talus::gui::MainWindow& w, const std::filesystem::path& dir, int width, int height) {
+  w.setReportInDialogs(false);
+  w.resize(width, height);
+  w.show();
+  ASSERT_TRUE(QTest::qWaitForWindowExposed(&w));
+  ASSERT_TRUE(w.openRunFile(QString::fromStdString(writeExampleRunFile(dir))));
+  waitFor([] { return false; }, 0.3);
 }
 
 int distinctColours(const QImage& image) {

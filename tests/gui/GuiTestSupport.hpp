@@ -10,6 +10,10 @@
 #include <memory>
 #include <string>
 
+namespace talus::gui {
+class MainWindow;
+}
+
 namespace talus::guitest {
 
 /// A fresh folder under the system temp folder (removed at the next call with the same name).
@@ -32,6 +36,9 @@ std::shared_ptr<QString> answerNextMessageBox(int button, double seconds = 30);
 /// which it gets as the dialog shows, sooner or later: in ctest's build folder the dialog kept its
 /// default name).
 void chooseInFileDialog(QFileDialog* dialog, const std::filesystem::path& file);
+/// Shows `w` at width x height with the example run-file (writeExampleRunFile) opened from `dir`,
+/// drawn. Use with ASSERT_NO_FATAL_FAILURE.
+void showExampleWindow(talus::gui::MainWindow& w, const std::filesystem::path& dir, int width = 1200, int height = 800);
 /// Number of distinct colours of an image.
 int distinctColours(const QImage& image);
 /// Standard deviation of the grey value (0..255) over the image.

@@ -29,21 +29,12 @@ int darkPixels(const QImage& image, const QRect& r) {
 bool near(const QColor& a, const QColor& b) {
   return std::abs(a.red() - b.red()) <= 3 && std::abs(a.green() - b.green()) <= 3 && std::abs(a.blue() - b.blue()) <= 3;
 }
-/// Shows the window at 1200 x 800 with the example run-file opened in `dir`, drawn.
-void showExample(MainWindow& w, const std::filesystem::path& dir) {
-  w.setReportInDialogs(false);
-  w.resize(1200, 800);
-  w.show();
-  ASSERT_TRUE(QTest::qWaitForWindowExposed(&w));
-  ASSERT_TRUE(w.openRunFile(QString::fromStdString(writeExampleRunFile(dir))));
-  waitFor([] { return false; }, 0.3);
-}
 }  // namespace
 
 TEST(FigureExport, PngHasTheViewLegendScaleBarNorthArrowAndTicks) {
   const auto dir = scratchDir("figure_export");
   MainWindow w;
-  ASSERT_NO_FATAL_FAILURE(showExample(w, dir));
+  ASSERT_NO_FATAL_FAILURE(showExampleWindow(w, dir));
   const QString path = QString::fromStdString((dir / "figure.png").string());
   ASSERT_EQ(w.exportFigure(path), "");
   const QImage figure(path);
@@ -116,7 +107,7 @@ TEST(FigureExport, BothPngMenuActionsWriteTheFigureOfTheMapView) {
   const auto dir = scratchDir("figure_export_menu");
   QApplication::setAttribute(Qt::AA_DontUseNativeDialogs);  // the Qt dialog, which the test can answer
   MainWindow w;
-  ASSERT_NO_FATAL_FAILURE(showExample(w, dir));
+  ASSERT_NO_FATAL_FAILURE(showExampleWindow(w, dir));
   const FigureLayout l = FigureLayout::of(w.viewer().grabFramebuffer().size());
   int n = 0;
   for (const QString& text : {QString("Export &figure..."), QString("Export &screenshot (PNG)...")}) {
