@@ -55,7 +55,9 @@
 #endif
 
 #define NSOLID 8   // solid state components: h_s, q_sx, q_sy, h_s phi, h_s rho_s, h_s d, h_s c, h_s w
-#define NSCALAR 5  // the passive scalars among them (from component 3)
+// The passive scalars among them (from component 3) that move: the lift-off speed only where the
+// curvature term is compiled in (without it the component stays 0 and costs no flux).
+#define NSCALAR (DEBRIS_CURVATURE ? 5 : 4)
 
 /// The bed the grid phases see: the DEM, plus the particles' confined thickness in hybrid mode.
 #if DEBRIS_OBSTACLE
