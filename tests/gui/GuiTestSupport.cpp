@@ -116,6 +116,19 @@ void showExampleWindow(talus::gui::MainWindow& w, const std::filesystem::path& d
   waitFor([] { return false; }, 0.3);
 }
 
+std::map<std::string, double> lastDiagnosticsRow(const fs::path& csv) {
+  std::istringstream in(readText(csv));
+  std::string header, line, last;
+  std::getline(in, header);
+  while (std::getline(in, line))
+    if (!line.empty()) last = line;
+  std::map<std::string, double> row;
+  if (last.empty()) return row;
+  std::istringstream h(header), r(last);
+  for (std::string key, value; std::getline(h, key, ',') && std::getline(r, value, ',');) row[key] = std::stod(value);
+  return row;
+}
+
 int distinctColours(const QImage& image) {
   std::set<QRgb> colours;
   for (int y = 0; y < image.height(); ++y)

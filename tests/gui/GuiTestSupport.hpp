@@ -7,6 +7,7 @@
 #include <QWidget>
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <memory>
 #include <string>
 
@@ -23,6 +24,8 @@ std::filesystem::path scratchDir(const std::string& name);
 std::string writeExampleRunFile(const std::filesystem::path& dir, const std::string& extraLines = "");
 /// The whole content of a text file ("" when it cannot be read).
 std::string readText(const std::filesystem::path& file);
+/// The last row of a diagnostics.csv, by column name (empty when the file has no data row).
+std::map<std::string, double> lastDiagnosticsRow(const std::filesystem::path& csv);
 /// Processes events until `done` is true or `seconds` pass; returns done().
 bool waitFor(const std::function<bool()>& done, double seconds);
 /// Calls `act` with the next modal dialog that opens within `seconds` (from the event loop the

@@ -117,28 +117,18 @@ TEST(OpenResults, TwoPhaseResultsPlotTheEnergyBudget) {
   w.show();
   QString problems;
   ASSERT_TRUE(w.openResults(QString::fromStdString(out.string()), &problems)) << problems.toStdString();
-  std::istringstream in(readText(out / "diagnostics.csv"));
-  std::string header, line, last;
-  std::getline(in, header);
-  while (std::getline(in, line))
-    if (!line.empty()) last = line;
-  auto column = [&](const std::string& row, const std::string& name) {
-    std::istringstream h(header), r(row);
-    std::string key, value;
-    while (std::getline(h, key, ',') && std::getline(r, value, ','))
-      if (key == name) return std::stod(value);
-    ADD_FAILURE() << "no column " << name;
-    return 0.0;
-  };
+  std::map<std::string, double> last = lastDiagnosticsRow(out / "diagnostics.csv");
+  for (const char* column : {"energy_released_J", "friction_drag_work_J", "kinetic_energy_J"})
+    ASSERT_EQ(last.count(column), 1u) << column;
   const auto& plot = w.plots().energyPlot();
   const std::size_t rows = diagnosticsRows(out);
   for (int series : {0, 1, 2}) EXPECT_EQ(plot.size(series), rows) << series;
-  const double released = column(last, "energy_released_J"), work = column(last, "friction_drag_work_J");
+  const double released = last["energy_released_J"], work = last["friction_drag_work_J"];
   EXPECT_GT(released, 0.0);
   EXPECT_GT(work, 0.0);
   EXPECT_DOUBLE_EQ(plot.last(1).y(), released);
   EXPECT_DOUBLE_EQ(plot.last(2).y(), work);
-  EXPECT_DOUBLE_EQ(plot.last(0).y(), column(last, "kinetic_energy_J"));
+  EXPECT_DOUBLE_EQ(plot.last(0).y(), last["kinetic_energy_J"]);
 }
 
 TEST(OpenResults, MovingTheSliderShowsThatFramesRaster) {

@@ -124,14 +124,7 @@ TEST(RunControl, ProgressCarriesTheParticleMassAndTheEnergyBudget) {
     sim::Simulation s(scene, config, (dir / "out").string(), sim::OutputMode::New);
     sim::Progress last;
     s.run([&](const sim::Progress& p) { last = p; });
-    std::istringstream csv(guitest::readText(dir / "out" / "diagnostics.csv"));
-    std::string header, line, row;
-    std::getline(csv, header);
-    while (std::getline(csv, line))
-      if (!line.empty()) row = line;
-    std::map<std::string, double> values;
-    std::istringstream h(header), r(row);
-    for (std::string key, value; std::getline(h, key, ',') && std::getline(r, value, ',');) values[key] = std::stod(value);
+    std::map<std::string, double> values = guitest::lastDiagnosticsRow(dir / "out" / "diagnostics.csv");
     EXPECT_GT(last.energyReleased, 0.0);
     EXPECT_GT(last.frictionWork, 0.0);
     // (the file holds 9 significant digits)

@@ -12,6 +12,16 @@
 
 namespace talus::test {
 
+flow::FlowSettings granularBetweenWalls(double k) {
+  flow::FlowSettings s;
+  s.twoPhase = true;
+  s.edge = flow::Boundary::Wall;
+  s.debris.earthPressure = flow::EarthPressure::Constant;
+  s.debris.kConst = k;
+  s.debris.deltaFromPhi = false;
+  return s;
+}
+
 flow::FlowInput debrisInput(const Grid& grid, const SolidMaterial& mat, double manning) {
   const std::size_t n = grid.cells();
   flow::FlowInput in;

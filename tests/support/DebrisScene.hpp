@@ -36,6 +36,10 @@ struct SolidMaterial {
 /// material (h = h_s = 0, at rest) and the uniform material `mat`.
 flow::FlowInput debrisInput(const Grid& grid, const SolidMaterial& mat = {}, double manning = 0.0);
 
+/// Settings of a dry granular test: the two-phase model between walls on every raster edge, the
+/// constant earth-pressure coefficient `k`, the bed friction angle from the delta map.
+flow::FlowSettings granularBetweenWalls(double k);
+
 /// The two-phase state of a solver (downloaded).
 struct DebrisState {
   std::vector<double> hs, qsx, qsy;  ///< solids [m], [m^2/s]

@@ -71,12 +71,7 @@ BlockRun slide(double c, double K) {
     in.hs[i] = block ? kH : 0.0;
     in.cohesion[i] = block ? c : 0.0;
   }
-  fl::FlowSettings s;
-  s.twoPhase = true;
-  s.edge = fl::Boundary::Wall;
-  s.debris.earthPressure = fl::EarthPressure::Constant;
-  s.debris.kConst = K;
-  s.debris.deltaFromPhi = false;
+  fl::FlowSettings s = talus::test::granularBetweenWalls(K);
   s.debris.filmThickness = 0.0;
   s.hDry = 1e-12;
   fl::FlowSolver solver(talus::test::testContext(Precision::Double), grid, s);

@@ -47,12 +47,7 @@ constexpr double kDeg = 3.14159265358979323846 / 180.0;
 
 /// Dry granular settings: two-phase model, walls, constant K = 1, bed friction from the delta map.
 fl::FlowSettings dryGranularSettings() {
-  fl::FlowSettings s;
-  s.twoPhase = true;
-  s.edge = fl::Boundary::Wall;
-  s.debris.earthPressure = fl::EarthPressure::Constant;
-  s.debris.kConst = 1.0;
-  s.debris.deltaFromPhi = false;
+  fl::FlowSettings s = talus::test::granularBetweenWalls(1.0);
   // No film regularisation: these are continuum solutions down to h = 0 (see "Film" below).
   s.debris.filmThickness = 0.0;
   return s;

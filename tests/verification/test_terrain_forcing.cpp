@@ -111,12 +111,7 @@ RunUp runValley(double a1, double a2, double mu, double kDx, bool curvature = tr
     in.bed[i] = v.bed(test::cellX(grid, i));
     if (i >= ic - half && i <= ic + half) in.hs[i] = kBlockH;
   }
-  fl::FlowSettings s;
-  s.twoPhase = true;
-  s.edge = fl::Boundary::Wall;
-  s.debris.earthPressure = fl::EarthPressure::Constant;
-  s.debris.kConst = 0.0;
-  s.debris.deltaFromPhi = false;
+  fl::FlowSettings s = test::granularBetweenWalls(0.0);
   s.debris.filmThickness = 0.0;
   s.curvature = curvature;
   fl::FlowSolver solver(test::testContext(compute::Precision::Double), grid, s);

@@ -66,12 +66,7 @@ bool released(int i, int j) { return i >= 6 && i < 14 && j >= 8 && j < 18; }
 
 /// The blocks' settings: two-phase solids between walls, K = 1, the bed friction angle as given.
 fl::FlowSettings blockSettings(bool curvature) {
-  fl::FlowSettings s;
-  s.twoPhase = true;
-  s.edge = fl::Boundary::Wall;
-  s.debris.earthPressure = fl::EarthPressure::Constant;
-  s.debris.kConst = 1.0;
-  s.debris.deltaFromPhi = false;
+  fl::FlowSettings s = test::granularBetweenWalls(1.0);
   s.curvature = curvature;
   return s;
 }
