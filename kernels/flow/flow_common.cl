@@ -2,7 +2,8 @@
 // src/flow/FlowParams.hpp), cell and face indexing, the tile map, limiters and the reconstruction.
 //
 // Build options: -DLIMITER=0 (minmod) | 1 (van Leer) | 2 (monotonised central) | 3 (none: first order),
-//                -DRIEMANN=0 (HLL) | 1 (HLLC), -DTILE=16 (tile edge in cells).
+//                -DRIEMANN=0 (HLL) | 1 (HLLC), -DTILE=16 (tile edge in cells),
+//                -DSPLIT=0 (unsplit time scheme) | 1 (dimensionally split: per-direction CFL speed).
 #ifndef TALUS_FLOW_COMMON_CL
 #define TALUS_FLOW_COMMON_CL
 #include "common/real.cl"
@@ -15,6 +16,9 @@
 #endif
 #ifndef TILE
 #define TILE 16
+#endif
+#ifndef SPLIT
+#define SPLIT 0
 #endif
 
 #define BOUNDARY_WALL 0

@@ -1,7 +1,8 @@
 // One SSP-RK2 stage of the shallow-water solver for one tile, fused: reconstruction, face fluxes,
 // well-balanced sources and the update (Shu & Osher 1988):
 //   U_out = a * U_base + (1 - a) * (U_st + dt * L(U_st)),
-// stage 1: a = 0 (U_base unused), stage 2: a = 1/2 with U_base the state at the start of the step.
+// stage 1: a = 0 (U_base unused), stage 2: a = 1/2 with U_base the state at the start of the step
+// (of the sweep, in the split scheme).
 // L(U) is the flux divergence plus the well-balanced bed source of Audusse et al. (2004, eq. 2.11):
 // per direction, with P the HLL pressure flux and c the hydrostatic corrections of riemann.cl,
 //   dt/dx * [ g_p (P_+ + c_+) - g_p (P_- + c_-) - g_p (h_lo + h_hi)/2 (b_hi - b_lo) ],
@@ -14,7 +15,12 @@
 // values, so both see the bitwise same flux (contraction is off, see common/real.cl) and interior
 // fluxes cancel exactly. Work-items outside the domain only help loading.
 // The volume that leaves through boundary faces [m^3] goes to out_step[cell] with weight w_out
-// (dt/2 per stage, assigned in stage 1 and added in stage 2).
+// (dt/2 per stage, assigned in the step's first stage and added in the others).
+//
+// dir_mask selects the directions whose faces the stage computes: 3 (both) for the unsplit scheme;
+// 1 (x) or 2 (y) for one sweep of the dimensionally split scheme (Time Scheme=split, Strang 1968
+// with the sweep order alternated between steps), whose two 1D SSP-RK2 sweeps are each positive and
+// well-balanced under a Courant number of 1/2 in their own direction.
 #include "flow/riemann.cl"
 
 #define HALO 2
@@ -52,7 +58,7 @@ void flow_stage(__constant const FlowParams* p, __global const uchar* mask, __gl
                 __global const real* h_base, __global const real* qx_base, __global const real* qy_base,
                 __global const real* h_st, __global const real* qx_st, __global const real* qy_st,
                 __global real* h_out, __global real* qx_out, __global real* qy_out, __global real* out_step,
-                const real dt, const real a, const real w_out, const int first_stage) {
+                const real dt, const real a, const real w_out, const int first_stage, const int dir_mask) {
   __local real lh[SPAN * SPAN], le[SPAN * SPAN], lu[SPAN * SPAN], lv[SPAN * SPAN], lg[SPAN * SPAN];
   __local uchar lin[SPAN * SPAN];
   const int tile = tile_list[get_group_id(0)];
@@ -91,6 +97,10 @@ void flow_stage(__constant const FlowParams* p, __global const uchar* mask, __gl
   // bitwise transposed results.
   real mass[2], normal[2], tangential[2], out = 0;
   for (int dir = 0; dir < 2; ++dir) {
+    if (!((dir_mask >> dir) & 1)) {
+      mass[dir] = normal[dir] = tangential[dir] = 0;
+      continue;
+    }
     const int da = dir == 0, db = dir == 1;
     const int sm = sc - db * SPAN - da, sp = sc + db * SPAN + da;
     const int m_in = lin[sm], p_in = lin[sp];

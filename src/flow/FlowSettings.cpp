@@ -43,4 +43,10 @@ DragLaw parseDragLaw(const std::string& name) {
   throw InputError("drag law '" + name + "' is not one of: off, linear, quadratic");
 }
 
+TimeScheme parseTimeScheme(const std::string& name) {
+  if (name == "unsplit") return TimeScheme::Unsplit;
+  if (name == "split") return TimeScheme::Split;
+  throw InputError("time scheme '" + name + "' is not one of: unsplit, split");
+}
+
 }  // namespace talus::flow

@@ -12,6 +12,10 @@ enum class Limiter { Minmod = 0, VanLeer = 1, MC = 2, None = 3 };
 enum class RiemannSolver { HLL = 0, HLLC = 1 };
 enum class Boundary { Wall = 0, Open = 1 };
 enum class DepthPressure { Cos2, Cos4 };
+/// Time integration of the water: SSP-RK2 over both directions' faces at once (CFL over the sum of
+/// the two directions' wave speeds), or dimensionally split sweeps, one SSP-RK2 per direction with
+/// the order alternated between steps (CFL per direction; kernels/flow/stage.cl).
+enum class TimeScheme { Unsplit = 0, Split = 1 };
 
 enum class EarthPressure { SavageHutter = 0, Constant = 1 };
 enum class DragLaw { Off = 0, Linear = 1, Quadratic = 2 };
@@ -54,16 +58,17 @@ struct EntrainmentSettings {
 struct FlowSettings {
   Limiter limiter = Limiter::MC;  // on the accuracy-per-cost front (docs/validation_parts/pareto.md)
   RiemannSolver riemann = RiemannSolver::HLLC;
-  double cfl = 0.5;                 ///< dt = cfl * dx / max((|u| + c) + (|v| + c))
+  TimeScheme scheme = TimeScheme::Unsplit;  ///< water only; the two-phase model is unsplit
+  /// dt = cfl * dx / max((|u| + c + w) + (|v| + c + w)); split: cfl * dx / max(max(|u|, |v|) + c + w)
+  double cfl = 0.5;
   double hDry = 1e-6;               ///< [m] below this, velocities are zero
   double arrivalH = 0.01;           ///< [m] thickness that marks arrival
   Boundary edge = Boundary::Open;   ///< raster edge
   Boundary nodata = Boundary::Wall; ///< faces to nodata cells
   bool skipDryTiles = true;         ///< skip tiles with no water within one tile
   bool slopeCorrection = true;      ///< g_n = g cos^2(theta) (spec §1); off: g everywhere
-  /// Solids: the bed's curvature in g_n (terrain-following gravity, kernels/flow/solid_bed.cl);
-  /// off by default: on a rough real DEM the discrete curvature makes fast thin layers gain energy
-  /// (docs/terrain_comparison.md)
+  /// Solids: the bed's curvature in g_n (terrain-following gravity, kernels/flow/solid_bed.cl); the
+  /// run-file key's default is on, this struct's default (for tests that build settings) is off
   bool curvature = false;
   DepthPressure depthPressure = DepthPressure::Cos2;  ///< g_p = g cos^2 (default) or g cos^4
   bool twoPhase = false;            ///< solids on the grid (grid mode of spec §3); false: water only
@@ -80,5 +85,6 @@ Boundary parseBoundary(const std::string& name);
 DepthPressure parseDepthPressure(const std::string& name);
 EarthPressure parseEarthPressure(const std::string& name);
 DragLaw parseDragLaw(const std::string& name);
+TimeScheme parseTimeScheme(const std::string& name);
 
 }  // namespace talus::flow

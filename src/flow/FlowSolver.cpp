@@ -20,7 +20,8 @@ std::string buildOptions(const FlowSettings& s) {
   return "-DLIMITER=" + std::to_string(static_cast<int>(s.limiter)) +
          " -DRIEMANN=" + std::to_string(static_cast<int>(s.riemann)) + " -DTILE=" + std::to_string(kTile) +
          // Manning's friction acts along the bed where the slope correction is on (flow/manning.cl).
-         " -DMANNING_ALONG_BED=" + (s.slopeCorrection ? "1" : "0");
+         " -DMANNING_ALONG_BED=" + (s.slopeCorrection ? "1" : "0") +
+         " -DSPLIT=" + (s.scheme == TimeScheme::Split ? "1" : "0");
 }
 
 template <class Real>
@@ -77,6 +78,8 @@ FlowSolver::FlowSolver(compute::Context& ctx, const Grid& grid, const FlowSettin
   if (grid.nx < 1 || grid.ny < 1 || !(grid.dx > 0)) throw InputError("flow solver needs a grid of at least 1x1 cells");
   if (!(settings.cfl > 0 && settings.cfl <= 0.5)) throw InputError("CFL must lie in (0, 0.5] (positivity)");
   if (settings.particleBed && !settings.twoPhase) throw InputError("the particle bed needs the two-phase grid model");
+  if (settings.twoPhase && settings.scheme == TimeScheme::Split)
+    throw InputError("the dimensionally split time scheme is for water only (the two-phase model runs unsplit)");
   const std::string opts = buildOptions(settings);
   stage_ = compute::Kernel(ctx.program("flow/stage.cl", opts), "flow_stage");
   friction_ = compute::Kernel(ctx.program("flow/friction.cl", opts), "flow_friction");
@@ -149,6 +152,7 @@ void FlowSolver::setInput(const FlowInput& in, double startTime) {
   if (settings_.twoPhase) setDebrisInput(in, h);
   if (settings_.entrainment.enabled) setEntrainmentInput(in);
   time_ = startTime;
+  splitStep_ = 0;
   // Every tile runs the first diagnostics, which finds the wet tiles.
   activateAllTiles();
   enqueueTrackMaxima();
@@ -205,8 +209,20 @@ void FlowSolver::step(double dt, double rainDepth) {
     enqueueDebrisStage(false, dt);
     if (settings_.entrainment.enabled) enqueueEntrainment(dt);
   } else {
-    enqueueStage(h_, qx_, qy_, h1_, qx1_, qy1_, dt, 0.0, true);
-    enqueueStage(h1_, qx1_, qy1_, h_, qx_, qy_, dt, 0.5, false);
+    if (settings_.scheme == TimeScheme::Split) {
+      // One SSP-RK2 sweep per direction, x first on even steps and y first on odd ones (the
+      // alternation makes Lie splitting second order, as Strang's symmetric form; Strang 1968).
+      const int first = (splitStep_ % 2 == 0) ? kDirX : kDirY;
+      const int second = first == kDirX ? kDirY : kDirX;
+      enqueueStage(h_, qx_, qy_, h1_, qx1_, qy1_, dt, 0.0, true, first);
+      enqueueStage(h1_, qx1_, qy1_, h_, qx_, qy_, dt, 0.5, false, first);
+      enqueueStage(h_, qx_, qy_, h1_, qx1_, qy1_, dt, 0.0, false, second);
+      enqueueStage(h1_, qx1_, qy1_, h_, qx_, qy_, dt, 0.5, false, second);
+      ++splitStep_;
+    } else {
+      enqueueStage(h_, qx_, qy_, h1_, qx1_, qy1_, dt, 0.0, true, kDirX | kDirY);
+      enqueueStage(h1_, qx1_, qy1_, h_, qx_, qy_, dt, 0.5, false, kDirX | kDirY);
+    }
     if (hasFriction_) enqueueFriction(dt);
   }
   // Rain and infiltration act on the water: the single-phase model's, or the fluid phase of the
@@ -229,7 +245,9 @@ void FlowSolver::applySources(double dt, double rainDepth) {
 
 double FlowSolver::filmStableDt() const {
   if (!(maxSlopeSpeed_ > 0)) return std::numeric_limits<double>::infinity();
-  return settings_.cfl * grid_.dx / (2.0 * maxSlopeSpeed_);
+  // The film's wave speed is 2 w over both directions (unsplit), w along one (split).
+  const double directions = settings_.scheme == TimeScheme::Split ? 1.0 : 2.0;
+  return settings_.cfl * grid_.dx / (directions * maxSlopeSpeed_);
 }
 
 double FlowSolver::enqueueSources(double dt, double rainDepth) {
@@ -246,11 +264,12 @@ double FlowSolver::enqueueSources(double dt, double rainDepth) {
 void FlowSolver::enqueueStage(const compute::RealBuffer& hSt, const compute::RealBuffer& qxSt,
                                const compute::RealBuffer& qySt, compute::RealBuffer& hOut,
                                compute::RealBuffer& qxOut, compute::RealBuffer& qyOut, double dt, double a,
-                               bool firstStage) {
+                               bool firstStage, int directions) {
   // Base state of the RK combination is always U0 (h_, qx_, qy_); in stage 2 the output is U0 too,
   // which is safe because each work-item reads its own cell's base value before writing it.
   stage_.bind(params_, mask_, tileList_, bed_, gp_, gn_, h_, qx_, qy_, hSt, qxSt, qySt, hOut, qxOut, qyOut,
-              outStep_, compute::RealArg{dt}, compute::RealArg{a}, compute::RealArg{0.5 * dt}, firstStage ? 1 : 0);
+              outStep_, compute::RealArg{dt}, compute::RealArg{a}, compute::RealArg{0.5 * dt}, firstStage ? 1 : 0,
+              directions);
   stage_.launch(tileRange(), kLocal2D, firstStage ? "flow_stage_1" : "flow_stage_2");
 }
 
@@ -310,6 +329,8 @@ std::vector<char> FlowSolver::saveState() const {
     bytes.resize(at + f->bytes());
     f->readBytes(bytes.data() + at, f->bytes());
   }
+  // The split scheme's sweep order of the next step (one byte; unsplit checkpoints have none).
+  if (settings_.scheme == TimeScheme::Split) bytes.push_back(static_cast<char>(splitStep_ % 2));
   return bytes;
 }
 
@@ -322,6 +343,8 @@ void FlowSolver::restoreState(const std::vector<char>& bytes, double time) {
                                  &slopeSpeed_.raw(), &bedSlope_.raw()});
   std::size_t total = 0;
   for (const compute::RawBuffer* f : fields) total += f->bytes();
+  const bool split = settings_.scheme == TimeScheme::Split;
+  if (split) total += 1;
   if (bytes.size() != total)
     throw InputError("checkpoint state has " + std::to_string(bytes.size()) +
                      " bytes, this grid, model and precision need " + std::to_string(total));
@@ -330,6 +353,7 @@ void FlowSolver::restoreState(const std::vector<char>& bytes, double time) {
     f->writeBytes(bytes.data() + at, f->bytes());
     at += f->bytes();
   }
+  if (split) splitStep_ = static_cast<std::uint64_t>(bytes.back() != 0);
   time_ = time;
   if (settings_.entrainment.enabled) erodibleVolume_ = reducer_.sum(erodible_, grid_.cells()) * grid_.dx * grid_.dx;
   // Diagnostics and the active tiles follow from the state alone: recompute them over every tile.

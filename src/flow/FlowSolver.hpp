@@ -165,7 +165,8 @@ class FlowSolver {
  private:
   void enqueueStage(const compute::RealBuffer& hSt, const compute::RealBuffer& qxSt, const compute::RealBuffer& qySt,
                      compute::RealBuffer& hOut, compute::RealBuffer& qxOut, compute::RealBuffer& qyOut, double dt,
-                     double a, bool firstStage);
+                     double a, bool firstStage, int directions);
+  static constexpr int kDirX = 1, kDirY = 2;  ///< the stage kernel's dir_mask bits
   void enqueueFriction(double dt);
   void enqueueTrackMaxima();
   /// Rain and infiltration over the whole grid (kernels/flow/water_sources.cl); with rain, lists
@@ -200,6 +201,8 @@ class FlowSolver {
   compute::Buffer<uint8_t> mask_;
   compute::Buffer<int> tileActive_, tileWet_, tileList_, tileCount_;
   int activeTiles_ = 0;
+  /// Steps taken with the split scheme: its parity chooses the sweep order (checkpointed).
+  std::uint64_t splitStep_ = 0;
   double maxSlopeSpeed_ = 0;  ///< max slope speed over the domain [m/s]
   bool hasInfiltration_ = false;
   std::size_t domainCells_ = 0;  ///< cells inside the domain (the rain volume is rainDepth x these x dx^2)

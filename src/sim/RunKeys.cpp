@@ -220,7 +220,11 @@ void addSourceKeys(KeyRegistry& r) {
 void addNumericsKeys(KeyRegistry& r) {
   Section(r, "Numerics")
       << real("CFL", "0.5", "-", 0.01, 0.5,
-              "Courant number over the sum of both directions' wave speeds (0.5 keeps the scheme positive)")
+              "Courant number over the sum of both directions' wave speeds, or per direction with Time Scheme=split "
+              "(0.5 keeps the scheme positive)")
+      << choice("Time Scheme", {"unsplit", "split"}, "unsplit",
+                "water: SSP-RK2 over both directions at once, or dimensionally split sweeps with a per-direction "
+                "time step (about half the steps where the flow is not along one axis; two-phase runs are unsplit)")
       << choice("Limiter", {"minmod", "vanleer", "mc", "none"}, "mc",
                 "slope limiter of the MUSCL reconstruction (none: first-order scheme, for comparisons)")
       << choice("Riemann Solver", {"hll", "hllc"}, "hllc", "approximate Riemann solver of the fluxes")

@@ -300,6 +300,9 @@ Scene loadScene(const io::RunConfig& cfg) {
     f.entrainment.growthRate = cfg.real("Entrainment Growth Rate");
     f.twoPhase = true;  // entrained material joins the solids (default properties where none were)
   }
+  if (f.twoPhase && f.scheme == flow::TimeScheme::Split)
+    throw InputError(cfg.origin("Time Scheme") + ": key 'Time Scheme': 'split' is for water-only runs; this run "
+                     "has solids (the two-phase model runs unsplit)");
   if (s.particles.enabled) {
     particles::ParticleSettings& ps = s.particles.settings;
     setElasticity(cfg, ps);
@@ -346,6 +349,7 @@ Scene loadScene(const io::RunConfig& cfg) {
   f.limiter = flow::parseLimiter(cfg.choice("Limiter"));
   f.riemann = flow::parseRiemann(cfg.choice("Riemann Solver"));
   f.cfl = cfg.real("CFL");
+  f.scheme = flow::parseTimeScheme(cfg.choice("Time Scheme"));
   f.hDry = cfg.real("Minimum Flow Height");
   f.arrivalH = cfg.real("Arrival Threshold");
   f.edge = flow::parseBoundary(cfg.choice("Boundary Type"));

@@ -1,0 +1,131 @@
+// The dimensionally split time scheme (FlowSettings::scheme = Split, run-file key Time Scheme):
+// its sweep order alternates between steps, so the order of the next step is state, and a solver
+// restored from a checkpoint taken after an odd number of steps must continue with the same order
+// (bitwise the run that did not stop); the key reaches the solver and is refused for two-phase runs.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "core/Constants.hpp"
+#include "core/Error.hpp"
+#include "flow/FlowSolver.hpp"
+#include "support/FlowScene.hpp"
+#include "support/TestDevice.hpp"
+
+namespace fl = talus::flow;
+using talus::Grid;
+using talus::compute::Precision;
+
+namespace {
+
+/// A dam break on a bumpy tilted bed, flowing diagonally so both sweeps matter.
+fl::FlowInput scene(const Grid& g) {
+  return talus::test::makeInput(
+      g, [](double x, double y) { return -0.05 * x - 0.03 * y + 0.2 * std::sin(0.7 * x) * std::cos(0.5 * y); },
+      [](double x, double y) { return std::hypot(x - 10.0, y - 8.0) < 5.0 ? 2.0 : 0.0; });
+}
+
+struct State {
+  std::vector<double> h, qx, qy;
+  bool operator==(const State& o) const { return h == o.h && qx == o.qx && qy == o.qy; }
+};
+State stateOf(const fl::FlowSolver& s) { return {s.h(), s.qx(), s.qy()}; }
+
+void advance(fl::FlowSolver& s, int steps) {
+  for (int k = 0; k < steps; ++k) s.step(s.stableDt());
+}
+
+}  // namespace
+
+TEST(SplitScheme, RestoredSolverContinuesWithTheSweepOrderOfTheCheckpoint) {
+  const Grid g = Grid::make(40, 32, 1.0);
+  const fl::FlowInput in = scene(g);
+  fl::FlowSettings s;
+  s.scheme = fl::TimeScheme::Split;
+  auto& ctx = talus::test::testContext(Precision::Double);
+  constexpr int kBefore = 3, kAfter = 4;  // an odd count before the checkpoint: the next step is y first
+
+  fl::FlowSolver full(ctx, g, s);
+  full.setInput(in);
+  advance(full, kBefore);
+  const std::vector<char> saved = full.saveState();
+  const double savedTime = full.time();
+  const State atCheckpoint = stateOf(full);
+  advance(full, kAfter);
+  const State expected = stateOf(full);
+
+  fl::FlowSolver resumed(ctx, g, s);
+  resumed.setInput(in);
+  resumed.restoreState(saved, savedTime);
+  advance(resumed, kAfter);
+  EXPECT_TRUE(stateOf(resumed) == expected) << "the restored solver did not continue bitwise";
+
+  // The order matters: the same state taken up as a new input (x first) gives another result, so
+  // the equality above is the checkpoint's order at work, not an order-free scheme.
+  fl::FlowInput mid = in;
+  mid.h = atCheckpoint.h;
+  mid.qx = atCheckpoint.qx;
+  mid.qy = atCheckpoint.qy;
+  fl::FlowSolver fresh(ctx, g, s);
+  fresh.setInput(mid, savedTime);
+  advance(fresh, kAfter);
+  EXPECT_FALSE(stateOf(fresh) == expected) << "x-first and y-first sweeps gave the same state";
+
+  // An unsplit checkpoint (no order byte) is refused by a split solver, naming the sizes.
+  fl::FlowSettings unsplit;
+  fl::FlowSolver other(ctx, g, unsplit);
+  other.setInput(in);
+  EXPECT_THROW(resumed.restoreState(other.saveState(), 0.0), talus::InputError);
+}
+
+TEST(SplitScheme, TwoPhaseRunsAreRefused) {
+  const Grid g = Grid::make(8, 8, 1.0);
+  fl::FlowSettings s;
+  s.scheme = fl::TimeScheme::Split;
+  s.twoPhase = true;
+  EXPECT_THROW(fl::FlowSolver(talus::test::testContext(Precision::Double), g, s), talus::InputError);
+}
+
+TEST(SplitScheme, StableStepIsPerDirection) {
+  // A uniform layer h = 1 m moving at (u, v) = (2, 1) m/s on a flat bed: c = sqrt(g h), no slope
+  // speed. Unsplit: dt = cfl dx / (|u| + |v| + 2 c); split: cfl dx / (max(|u|, |v|) + c).
+  const Grid g = Grid::make(16, 16, 2.0);
+  const fl::FlowInput in = talus::test::makeInput(
+      g, [](double, double) { return 0.0; }, [](double, double) { return 1.0; },
+      [](double, double) { return 2.0; }, [](double, double) { return 1.0; });
+  const double c = std::sqrt(talus::kGravity * 1.0);
+  for (const auto scheme : {fl::TimeScheme::Unsplit, fl::TimeScheme::Split}) {
+    fl::FlowSettings s;
+    s.scheme = scheme;
+    s.slopeCorrection = false;
+    fl::FlowSolver solver(talus::test::testContext(Precision::Double), g, s);
+    solver.setInput(in);
+    const double speed = scheme == fl::TimeScheme::Split ? 2.0 + c : 3.0 + 2 * c;
+    // 1e-12: the device evaluates the same formula in double (a few ulps).
+    EXPECT_NEAR(solver.stableDt(), s.cfl * g.dx / speed, 1e-12 * s.cfl * g.dx / speed);
+  }
+}
+
+TEST(SplitScheme, StableStepOfAFilmOnASlopeKeepsTheEndSpeedWithinTheCfl) {
+  // A 1 mm film at rest on a 0.3 plane: a = c = sqrt(g h); the bed accelerates it by g |grad b|
+  // = w^2 / dx (w the solver's slope speed). The split step solves (a + g |grad b| dt) dt = cfl dx
+  // (kernels/flow/diagnostics.cl), so the speed the film reaches within the step keeps the CFL.
+  const Grid g = Grid::make(16, 16, 2.0);
+  const fl::FlowInput in = talus::test::makeInput(
+      g, [](double x, double) { return -0.3 * x; }, [](double, double) { return 1e-3; });
+  fl::FlowSettings s;
+  s.scheme = fl::TimeScheme::Split;
+  fl::FlowSolver solver(talus::test::testContext(Precision::Double), g, s);
+  solver.setInput(in);
+  const std::vector<double> w = solver.slopeSpeed();
+  double dtExpected = 1e300;
+  for (std::size_t k = 0; k < g.cells(); ++k) {
+    // The kernel's wave speed uses g (the largest g_p a face can use), as in the unsplit formula.
+    const double a = std::sqrt(talus::kGravity * 1e-3), accel = w[k] * w[k] / g.dx;
+    const double dt = (-a + std::sqrt(a * a + 4 * accel * s.cfl * g.dx)) / (2 * accel);
+    dtExpected = std::min(dtExpected, dt);
+  }
+  EXPECT_NEAR(solver.stableDt(), dtExpected, 1e-9 * dtExpected);
+}
+
