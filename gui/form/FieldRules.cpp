@@ -57,6 +57,14 @@ std::vector<FieldRule> fieldRules(const io::KeyRegistry& keys) {
   rules.push_back(whenOn("Entrainment Growth Rate", "Include Entrainment"));
   for (const char* drag : {"Drag coefficient multiplier", "Drag P Exponent", "Drag M", "Drag Smoothing Velocity"})
     rules.push_back({drag, [](const ValueOf& v) { return lower(v("Drag Law")) != "off"; }, "off with Drag Law=off"});
+  // The split time scheme is for water-only runs; solids (on the grid, as particles, or entrained)
+  // make the run two-phase, which is unsplit.
+  rules.push_back({"Time Scheme",
+                   [](const ValueOf& v) {
+                     return !isOn(v("Include Initial Solids")) && !isOn(v("Use Material Point Method")) &&
+                            !isOn(v("Include Entrainment"));
+                   },
+                   "water-only runs (a run with solids is two-phase, which is unsplit)"});
   rules.push_back(whenPositive("Viscous Shear Factor", "Viscous Reynolds Number"));
   rules.push_back(whenPositive("Viscous Profile Factor", "Interfacial Reynolds Number"));
   // A basal law's parameters matter while Solid Rheology names a law that reads them.

@@ -65,6 +65,11 @@ TEST(FormFields, ProcessMapsAndOtherPairsFollowTheirSwitch) {
   EXPECT_TRUE(young->isEnabled());
   // A basal law's parameters only with that law.
   EXPECT_FALSE(w.form().field("Voellmy Mu")->isEnabled());  // Solid Rheology=coulomb (default)
+  // The time scheme is a choice of water-only runs: solids make the run two-phase (unsplit).
+  // Include Initial Solids was switched on above.
+  EXPECT_FALSE(w.form().field("Time Scheme")->isEnabled());
+  clickFlag(w.form().field("Include Initial Solids"));
+  EXPECT_TRUE(w.form().field("Time Scheme")->isEnabled());
 }
 
 TEST(FormFields, AnglesInDegreesInTheFormRadiansInTheFile) {
