@@ -49,7 +49,7 @@ def is_clean(r, limit=float(os.environ.get("PEERS_CONTENDED", "0.1"))):
     if "others_share" in r:
         return r["others_share"] <= limit
     ratio = r.get("cpu_s", 0) / max(r["wall_s"], 1e-9)
-    return ratio >= 0.95 if r["threads"] == 1 else ratio >= 1.15
+    return ratio >= 0.95 if r["threads"] == 1 else ratio >= 1.6
 
 
 def summarise(runs):
