@@ -78,11 +78,10 @@ void flow_tile_diagnostics(__constant const FlowParams* p, __global const uchar*
     const real area = p->dx * p->dx;
 #if SPLIT
     // Dimensionally split scheme: each sweep's Courant number is along its own direction, with the
-    // same slope speed w per direction as the unsplit sum. w is a stability bound, not only the
-    // speed a film gains: the well-balanced bed source couples a thin layer on a slope to its
-    // neighbours at the rate w / dx, and a step with w dt / dx above the Courant number lets
-    // round-off grow on a lake at rest over a rough bed (WellBalanced.LakeAtRestRoughDemSplitScheme
-    // grew to 3 m/s in 800 steps with the film-only bound (a + sqrt(a^2 + 4 cfl w^2)) / 2).
+    // same slope speed w per direction as the unsplit sum. A smaller weight (the speed a film gains
+    // within the step, (a + sqrt(a^2 + 4 cfl w^2)) / 2) kept a lake at rest between walls still but
+    // let a lake against an open edge drain at m/s within 150 s (the outflow-only edge is a one-way
+    // valve, docs/numerics.md), so w keeps its full weight until that edge is mended.
     speed = hk > (real)0 ? fmax(fabs(u), fabs(v)) + cw + slope_speed[k] : (real)0;
 #else
     speed = hk > (real)0 ? fabs(u) + fabs(v) + (real)2 * (cw + slope_speed[k]) : (real)0;

@@ -111,8 +111,8 @@ TEST(SplitScheme, StableStepIsPerDirection) {
 TEST(SplitScheme, StableStepOfAFilmOnASlopeAddsTheSlopeSpeedOnce) {
   // A 1 mm film at rest on a 0.3 plane: c = sqrt(g h) and the slope speed w = sqrt(g |grad b| dx)
   // (the solver's, kernels/flow/diagnostics.cl). Split: dt = cfl dx / (c + w), one direction's
-  // speed; unsplit: cfl dx / (2 (c + w)). w is a stability bound of the well-balanced bed source on
-  // slopes, so the split step keeps it at full weight (docs/numerics.md).
+  // speed; unsplit: cfl dx / (2 (c + w)). The split step keeps w at full weight (docs/numerics.md:
+  // a smaller weight lets a lake against an open edge drain).
   const Grid g = Grid::make(16, 16, 2.0);
   const fl::FlowInput in = talus::test::makeInput(
       g, [](double x, double) { return -0.3 * x; }, [](double, double) { return 1e-3; });
