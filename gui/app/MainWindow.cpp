@@ -28,7 +28,7 @@ namespace talus::gui {
 namespace {
 constexpr const char* kGeometryKey = "window/geometry";
 constexpr const char* kStateKey = "window/state";
-constexpr int kLayoutVersion = 1;  ///< raise when the docks change: an older saved layout is ignored
+constexpr int kLayoutVersion = 2;  ///< raise when the docks change: an older saved layout is ignored
 
 /// A panel in a scroll area, so that its dock can be made smaller than the panel's own minimum.
 QScrollArea* scrollable(QWidget* panel) {
@@ -49,6 +49,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   layers_ = new LayerPanel;
   log_ = new LogPanel;
   plots_ = new PlotPanel;
+  probe_ = new ProbePanel;
   status_ = new RunStatusPanel;
   hover_ = new QLabel;
   run_ = new RunController(this);
@@ -81,6 +82,8 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   });
   connect(run_, &RunController::snapshotReady, this, &MainWindow::onSnapshot);
   connect(replay_, &ReplayBar::frameChanged, this, &MainWindow::showResultsFrame);
+  connect(&viewer_->sketch(), &MapSketch::finished, this, &MainWindow::onSketchFinished);
+  connect(&viewer_->sketch(), &MapSketch::hint, log_, &LogPanel::append);
   applyLayerStyle();
   updateActions();
   resize(1400, 900);
@@ -132,6 +135,11 @@ void MainWindow::buildActions() {
   });
   view->addAction("&Reset view", this, [this] { viewer_->resetView(); });
 
+  QMenu* tools = menuBar()->addMenu("&Tools");
+  drawRelease_ = tools->addAction("Draw &release area", this, [this] { startSketch(MapSketch::Tool::Polygon); });
+  probePoint_ = tools->addAction("Time series at a &point", this, [this] { startSketch(MapSketch::Tool::Point); });
+  probeProfile_ = tools->addAction("&Profile along a line", this, [this] { startSketch(MapSketch::Tool::Profile); });
+
   QToolBar* bar = addToolBar("Run");
   bar->setObjectName("runToolbar");
   for (QAction* a : {open_, save_, start_, pause_, step_, stop_, restart_}) bar->addAction(a);
@@ -156,7 +164,9 @@ void MainWindow::buildDocks() {
   dock("Layers", scrollable(layers_), Qt::RightDockWidgetArea);
   QDockWidget* plotDock = dock("Plots", scrollable(plots_), Qt::BottomDockWidgetArea);
   QDockWidget* logDock = dock("Log", log_, Qt::BottomDockWidgetArea);
+  QDockWidget* probeDock = dock("Probe", scrollable(probe_), Qt::BottomDockWidgetArea);
   tabifyDockWidget(plotDock, logDock);
+  tabifyDockWidget(plotDock, probeDock);
   plotDock->raise();
   resizeDocks({formDock}, {420}, Qt::Horizontal);
   resizeDocks({plotDock}, {260}, Qt::Vertical);
@@ -200,6 +210,7 @@ void MainWindow::updateActions() {
   stop_->setEnabled(active);
   restart_->setEnabled(doc_ && (s == S::Running || s == S::Paused || s == S::Ended));
   save_->setEnabled(doc_ != nullptr);
+  drawRelease_->setEnabled(doc_ && initial_ && !active);
   saveAs_->setEnabled(doc_ != nullptr);
   form_->setEnabled(doc_ && !active);
   open_->setEnabled(!active);
@@ -268,6 +279,11 @@ void MainWindow::resetScene() {
   viewer_->clearScene();
   layers_->clear();
   plots_->clear();
+  viewer_->sketch().start(MapSketch::Tool::None);
+  probeI_ = probeJ_ = -1;
+  profileLine_.clear();
+  probedLayer_.clear();
+  probe_->clear();
   status_->reset();
   hoverI_ = -1;
   hover_->clear();
@@ -337,6 +353,7 @@ void MainWindow::onSnapshot(std::shared_ptr<const sim::ViewSnapshot> s) {
   layers_->setSnapshot(s);
   viewer_->setSnapshot(s);
   plots_->addSnapshot(*s);
+  refreshProbes(false);
   if (hoverI_ >= 0) hover_->setText(hoverText(hoverI_, hoverJ_));
   if (exporter_.isRecording()) {
     const QString problem = exporter_.captureFrame(*viewer_);
@@ -352,6 +369,7 @@ void MainWindow::applyLayerStyle() {
   viewer_->setLayer(layers_->layer(), layers_->layerStyle());
   viewer_->setParticleRamp(layers_->particleRamp());
   viewer_->setParticleStyle(layers_->particleStyle());
+  if (layers_->layer() != probedLayer_) refreshProbes(false);
 }
 
 void MainWindow::onHover(int i, int j, bool inside) {
@@ -365,13 +383,13 @@ QString MainWindow::cursorReadout() const { return hover_->text(); }
 QString MainWindow::hoverText(int i, int j) const {
   const auto s = viewer_->snapshot();
   QString text = QString("cell (%1, %2)").arg(i).arg(j);
-  // The scene under the cursor: the run's, else the opened results', else the run-file's initial one.
-  const sim::ViewFields* view = run_->viewFields();
-  const InitialScene* initial = initial_ && !initial_->elevation.empty() ? initial_.get() : nullptr;
-  if (!view && !results_ && !initial) return text;
-  const Grid& g = view ? view->grid() : results_ ? results_->grid() : initial->grid;
-  const std::vector<float>& z = view ? view->elevation() : results_ ? results_->elevation() : initial->elevation;
-  const std::vector<sim::GridLayerInfo>& layers = view ? view->gridLayers() : results_ ? results_->layers() : initial->layers;
+  const Grid* grid = nullptr;
+  const std::vector<float>* elevation = nullptr;
+  const std::vector<sim::GridLayerInfo>* catalogue = nullptr;
+  if (!sceneOnScreen(grid, elevation, catalogue)) return text;
+  const Grid& g = *grid;
+  const std::vector<float>& z = *elevation;
+  const std::vector<sim::GridLayerInfo>& layers = *catalogue;
   if (i < 0 || j < 0 || i >= g.nx || j >= g.ny) return text;
   const std::size_t k = g.index(i, j);
   text += QString("  x %1 y %2").arg(g.cellX(i), 0, 'f', 1).arg(g.cellY(j), 0, 'f', 1);
@@ -383,6 +401,18 @@ QString MainWindow::hoverText(int i, int j) const {
     if (const std::vector<float>* v = s->layer(info.name); v && k < v->size() && std::isfinite((*v)[k]))
       text += QString("  %1 %2 %3").arg(QString::fromStdString(info.name)).arg((*v)[k], 0, 'g', 4).arg(QString::fromStdString(info.unit));
   return text;
+}
+
+bool MainWindow::sceneOnScreen(const Grid*& grid, const std::vector<float>*& elevation,
+                               const std::vector<sim::GridLayerInfo>*& layers) const {
+  // The run's, else the opened results', else the run-file's initial one.
+  const sim::ViewFields* view = run_->viewFields();
+  const InitialScene* initial = initial_ && !initial_->elevation.empty() ? initial_.get() : nullptr;
+  if (!view && !results_ && !initial) return false;
+  grid = view ? &view->grid() : results_ ? &results_->grid() : &initial->grid;
+  elevation = view ? &view->elevation() : results_ ? &results_->elevation() : &initial->elevation;
+  layers = view ? &view->gridLayers() : results_ ? &results_->layers() : &initial->layers;
+  return true;
 }
 
 QString MainWindow::saveRunFile(const QString& path) {

@@ -9,10 +9,13 @@
 #include <memory>
 #include <optional>
 
+#include "core/MapGeometry.hpp"
 #include "export/FrameExporter.hpp"
 #include "form/ParameterForm.hpp"
+#include "form/ReleaseAreaDialog.hpp"
 #include "form/RunFileDocument.hpp"
 #include "plots/PlotPanel.hpp"
+#include "plots/ProbePanel.hpp"
 #include "results/ReplayBar.hpp"
 #include "results/ResultsReplay.hpp"
 #include "run/LogPanel.hpp"
@@ -90,6 +93,24 @@ class MainWindow : public QMainWindow {
   /// What the status bar says about the cell under the cursor ("" when it is outside the terrain).
   QString cursorReadout() const;
 
+  /// Starts drawing on the map (switches to the map view): a release area (Polygon), a profile
+  /// (Profile) or the cell of a time series (Point). A finished polygon asks what it releases
+  /// (ReleaseAreaDialog, window-modal) and then calls saveReleaseArea.
+  void startSketch(MapSketch::Tool tool);
+  /// Writes a release area drawn as `polygon` (world coordinates) to the raster `path` and sets the
+  /// open run-file's keys to it (Include Initial Water / Initial Fluid Height, or the solids'
+  /// pair); the scene then shows the new map. With `addToCurrent` the cells outside the polygon keep
+  /// the key's current map. Returns "" or the problem (also in the log).
+  QString saveReleaseArea(const std::vector<MapPoint>& polygon, ReleaseAreaDialog::Material material,
+                          double thickness, const QString& path, bool addToCurrent);
+  /// Shows the time series of the shown layer at cell (i, j) (-1: none) in the Probe panel: over the
+  /// frames of opened results, from a live run's snapshots as they come, or the scene's one value.
+  void probeCell(int i, int j);
+  /// Shows the shown layer's profile along `line` (world coordinates, empty: none), sampled every
+  /// half cell, with the terrain along it; it follows the frame and the layer shown.
+  void probeProfile(const std::vector<MapPoint>& line);
+  ProbePanel& probe() { return *probe_; }
+
  protected:
   void dragEnterEvent(QDragEnterEvent* e) override;
   void dropEvent(QDropEvent* e) override;
@@ -128,6 +149,15 @@ class MainWindow : public QMainWindow {
   void toggleRecording(bool on);
   bool confirmDiscard();
   QString hoverText(int i, int j) const;
+  /// The scene on screen (the run's, else the opened results', else the run-file's initial one):
+  /// its grid, elevation and layer catalogue; false when there is none.
+  bool sceneOnScreen(const Grid*& grid, const std::vector<float>*& elevation,
+                     const std::vector<sim::GridLayerInfo>*& layers) const;
+  void onSketchFinished(MapSketch::Tool tool, const std::vector<QPointF>& vertices);
+  void askReleaseArea(const std::vector<MapPoint>& polygon);
+  /// Recomputes the probes for the layer and snapshot now shown (the point series only when the
+  /// layer changed or `rereadSeries`).
+  void refreshProbes(bool rereadSeries);
 
   std::unique_ptr<RunFileDocument> doc_;
   ParameterForm* form_;
@@ -135,6 +165,7 @@ class MainWindow : public QMainWindow {
   LayerPanel* layers_;
   LogPanel* log_;
   PlotPanel* plots_;
+  ProbePanel* probe_;
   RunStatusPanel* status_;
   QLabel* hover_;
   RunController* run_;
@@ -147,7 +178,11 @@ class MainWindow : public QMainWindow {
   bool reportInDialogs_ = true;
   QString outputOverride_;
   int hoverI_ = -1, hoverJ_ = -1;
+  int probeI_ = -1, probeJ_ = -1;  ///< the time series' cell
+  QString probedLayer_;            ///< the layer the time series was read for
+  std::vector<MapPoint> profileLine_;
   QAction *open_, *openResults_, *compareResults_, *save_, *saveAs_, *start_, *pause_, *step_, *stop_, *restart_, *tilted_, *shot_, *record_, *exportLayer_, *exportFigure_;
+  QAction *drawRelease_, *probePoint_, *probeProfile_;
 };
 
 }  // namespace talus::gui

@@ -99,6 +99,7 @@ void MainWindow::showResultsFrame(int frame) {
   const auto s = results_->snapshot(frame);
   layers_->setSnapshot(s);
   viewer_->setSnapshot(s);
+  refreshProbes(false);
   if (hoverI_ >= 0) hover_->setText(hoverText(hoverI_, hoverJ_));
 }
 

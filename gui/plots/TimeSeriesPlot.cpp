@@ -40,6 +40,17 @@ void TimeSeriesPlot::clear() {
   update();
 }
 
+void TimeSeriesPlot::setTitle(const QString& title, const QString& unit) {
+  title_ = title;
+  unit_ = unit;
+  update();
+}
+
+void TimeSeriesPlot::setXUnit(const QString& unit) {
+  xUnit_ = unit;
+  update();
+}
+
 void TimeSeriesPlot::paintEvent(QPaintEvent*) {
   QPainter p(this);
   p.setRenderHint(QPainter::Antialiasing);
@@ -74,8 +85,8 @@ void TimeSeriesPlot::paintEvent(QPaintEvent*) {
   };
   p.drawText(QRectF(0, area.top() - fm.height() / 2.0, left - 4, fm.height()), Qt::AlignRight, QString::number(y1, 'g', 4));
   p.drawText(QRectF(0, area.bottom() - fm.height() / 2.0, left - 4, fm.height()), Qt::AlignRight, QString::number(y0, 'g', 4));
-  p.drawText(QRectF(area.left(), area.bottom() + 2, area.width(), fm.height()), Qt::AlignLeft, QString::number(t0, 'g', 4) + " s");
-  p.drawText(QRectF(area.left(), area.bottom() + 2, area.width(), fm.height()), Qt::AlignRight, QString::number(t1, 'g', 4) + " s");
+  p.drawText(QRectF(area.left(), area.bottom() + 2, area.width(), fm.height()), Qt::AlignLeft, QString::number(t0, 'g', 4) + " " + xUnit_);
+  p.drawText(QRectF(area.left(), area.bottom() + 2, area.width(), fm.height()), Qt::AlignRight, QString::number(t1, 'g', 4) + " " + xUnit_);
   int legendX = int(area.right()) - 4;
   for (auto it = series_.rbegin(); it != series_.rend(); ++it) {
     if (it->points.empty()) continue;

@@ -19,6 +19,12 @@ class TimeSeriesPlot : public QWidget {
   /// Appends a point (t [s], value) to a series.
   void append(int series, double t, double value);
   void clear();
+  /// Replaces the title and the value unit (the legend's series stay).
+  void setTitle(const QString& title, const QString& unit);
+  /// The unit of the horizontal axis ("s" unless set: a profile plots against distance in "m").
+  void setXUnit(const QString& unit);
+  /// The points of a series (x, value).
+  const std::vector<QPointF>& points(int series) const { return series_[static_cast<std::size_t>(series)].points; }
   /// Number of points held by a series.
   std::size_t size(int series) const { return series_[static_cast<std::size_t>(series)].points.size(); }
   /// The last point of a series (t, value); (0, 0) while it has none.
@@ -37,7 +43,7 @@ class TimeSeriesPlot : public QWidget {
     QColor color;
     std::vector<QPointF> points;
   };
-  QString title_, unit_;
+  QString title_, unit_, xUnit_ = "s";
   std::vector<Series> series_;
 };
 

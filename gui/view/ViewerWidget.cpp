@@ -1,5 +1,6 @@
 #include "view/ViewerWidget.hpp"
 
+#include <QKeyEvent>
 #include <QMouseEvent>
 #include <QWheelEvent>
 #include <cmath>
@@ -11,6 +12,8 @@ namespace talus::gui {
 ViewerWidget::ViewerWidget(QWidget* parent) : QOpenGLWidget(parent) {
   setMouseTracking(true);
   setMinimumSize(320, 240);
+  setFocusPolicy(Qt::StrongFocus);  // Enter, Backspace and Esc for the sketch tools
+  sketch_ = new MapSketch([this](QPointF model) { return camera_.mapPixel(model, width(), height()); }, this);
 }
 
 ViewerWidget::~ViewerWidget() {
@@ -27,11 +30,15 @@ ViewerWidget::~ViewerWidget() {
 }
 
 void ViewerWidget::setTerrain(const Grid& grid, std::vector<float> elevation) {
+  // The same terrain again (the scene re-read after an edit, such as a drawn release area) keeps
+  // the view the user chose; another one (or one after clearScene) is framed whole.
+  const bool same = grid_.nx > 0 && sameGrid(grid_, grid);
   grid_ = grid;
   elevation_ = std::move(elevation);
   snapshot_.reset();
   terrainDirty_ = true;
-  resetView();
+  if (same) update();
+  else resetView();
 }
 
 void ViewerWidget::clearScene() {
@@ -126,6 +133,7 @@ void ViewerWidget::chooseInterop() {
 }
 
 void ViewerWidget::resizeGL(int w, int h) {
+  sketch_->setGeometry(0, 0, width(), height());
   if (frames_ == 0) camera_.fit(grid_.nx * grid_.dx, grid_.ny * grid_.dx, w, h);
 }
 
@@ -184,6 +192,7 @@ void ViewerWidget::paintGL() {
                      particleStyle_.max);
   }
   ++frames_;
+  if (sketch_->active()) sketch_->update();  // the camera may have moved under it
 }
 
 bool ViewerWidget::cellAt(QPoint pixel, int& i, int& j) {
@@ -215,12 +224,49 @@ QPointF ViewerWidget::pixelOfCell(int i, int j) const {
   return camera_.mapPixel(model, width(), height());
 }
 
-void ViewerWidget::mousePressEvent(QMouseEvent* e) { lastMouse_ = e->pos(); }
+QPointF ViewerWidget::worldOf(QPointF model) const {
+  // As worldOrigin, in double: the sketch needs the georeference in full.
+  const auto& gt = grid_.geoTransform;
+  return {gt[0] + gt[1] * grid_.nx / 2.0 + model.x(), gt[3] + gt[5] * grid_.ny / 2.0 + model.y()};
+}
+
+QPointF ViewerWidget::modelOf(QPointF world) const {
+  const auto& gt = grid_.geoTransform;
+  return {world.x() - (gt[0] + gt[1] * grid_.nx / 2.0), world.y() - (gt[3] + gt[5] * grid_.ny / 2.0)};
+}
+
+void ViewerWidget::mousePressEvent(QMouseEvent* e) {
+  lastMouse_ = e->pos();
+  const bool sketching = sketch_->active() && camera_.mode() == ViewCamera::Mode::Map && grid_.nx > 0;
+  if (sketching && e->button() == Qt::LeftButton && !(e->modifiers() & Qt::ShiftModifier))
+    sketch_->addVertex(camera_.mapPoint(e->pos(), width(), height()));
+}
+
+void ViewerWidget::mouseDoubleClickEvent(QMouseEvent* e) {
+  // The double click's first press added the last vertex.
+  if (sketch_->active() && e->button() == Qt::LeftButton) sketch_->finish();
+}
+
+void ViewerWidget::keyPressEvent(QKeyEvent* e) {
+  if (!sketch_->active()) {
+    QOpenGLWidget::keyPressEvent(e);
+    return;
+  }
+  switch (e->key()) {
+    case Qt::Key_Return:
+    case Qt::Key_Enter: sketch_->finish(); break;
+    case Qt::Key_Escape: sketch_->cancel(); break;
+    case Qt::Key_Backspace: sketch_->removeLastVertex(); break;
+    default: QOpenGLWidget::keyPressEvent(e);
+  }
+}
 
 void ViewerWidget::mouseMoveEvent(QMouseEvent* e) {
   const QPoint d = e->pos() - lastMouse_;
   lastMouse_ = e->pos();
-  const bool panning = (e->buttons() & Qt::LeftButton && camera_.mode() == ViewCamera::Mode::Map) ||
+  const bool sketching = sketch_->active() && camera_.mode() == ViewCamera::Mode::Map;
+  if (sketching) sketch_->moveCursor(camera_.mapPoint(e->pos(), width(), height()));
+  const bool panning = (e->buttons() & Qt::LeftButton && camera_.mode() == ViewCamera::Mode::Map && !sketching) ||
                        e->buttons() & Qt::MiddleButton || e->buttons() & Qt::RightButton ||
                        (e->buttons() & Qt::LeftButton && e->modifiers() & Qt::ShiftModifier);
   if (panning) {

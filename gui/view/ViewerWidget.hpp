@@ -13,6 +13,7 @@
 #include "render/ClGlInterop.hpp"
 #include "render/TerrainRenderer.hpp"
 #include "sim/ViewFields.hpp"
+#include "view/MapSketch.hpp"
 #include "view/ViewCamera.hpp"
 
 namespace talus::gui {
@@ -34,7 +35,8 @@ class ViewerWidget : public QOpenGLWidget, protected QOpenGLFunctions_3_3_Core {
   explicit ViewerWidget(QWidget* parent = nullptr);
   ~ViewerWidget() override;
 
-  /// The terrain of a new scene: grid and elevation (NaN outside the domain). Resets the view.
+  /// The terrain of a scene: grid and elevation (NaN outside the domain). Frames it whole unless
+  /// it lies on the grid already shown (then the view stays).
   void setTerrain(const Grid& grid, std::vector<float> elevation);
   /// Where device data live, for the choice of the interop path (nullptrs: host data only).
   /// `contextNote` says why that context does or does not share with OpenGL (for the log).
@@ -62,6 +64,14 @@ class ViewerWidget : public QOpenGLWidget, protected QOpenGLFunctions_3_3_Core {
   bool cellAt(QPoint pixel, int& i, int& j);
   /// Map view: the widget pixel at the centre of cell (i, j).
   QPointF pixelOfCell(int i, int j) const;
+  /// World coordinates (the grid's georeference) of a model point, and back.
+  QPointF worldOf(QPointF model) const;
+  QPointF modelOf(QPointF world) const;
+  /// Map view: the widget pixel showing a world point.
+  QPointF pixelOfWorld(QPointF world) const { return camera_.mapPixel(modelOf(world), width(), height()); }
+  /// What is being drawn on the map (release area, profile, point). While a tool is active, left
+  /// clicks in the map view add its vertices instead of panning (Shift+drag still pans).
+  MapSketch& sketch() { return *sketch_; }
   /// The chosen interop path (valid once the widget has been shown).
   const InteropChoice* interopChoice() const;
   ClGlInterop* interop() { return interop_.get(); }
@@ -84,6 +94,8 @@ class ViewerWidget : public QOpenGLWidget, protected QOpenGLFunctions_3_3_Core {
   void mouseMoveEvent(QMouseEvent* e) override;
   void wheelEvent(QWheelEvent* e) override;
   void leaveEvent(QEvent* e) override;
+  void mouseDoubleClickEvent(QMouseEvent* e) override;
+  void keyPressEvent(QKeyEvent* e) override;
 
  private:
   QOpenGLFunctions_3_3_Core& gl() { return *this; }
@@ -112,6 +124,7 @@ class ViewerWidget : public QOpenGLWidget, protected QOpenGLFunctions_3_3_Core {
   compute::GlShareHandles offered_;  // what initializeGL offered the engine for GL-shared contexts
   QPoint lastMouse_;
   long long frames_ = 0;
+  MapSketch* sketch_;
 };
 
 }  // namespace talus::gui

@@ -4,6 +4,10 @@
 #include <QTest>
 
 #include "app/MainWindow.hpp"
+#include "io/RunConfig.hpp"
+#include "sim/RunKeys.hpp"
+#include "sim/Scene.hpp"
+#include "sim/Simulation.hpp"
 
 #include <QAbstractButton>
 #include <QApplication>
@@ -50,6 +54,14 @@ std::string writeExampleRunFile(const fs::path& dir, const std::string& extraLin
   const std::string path = (dir / "scene.run").string();
   std::ofstream(path) << text.str();
   return path;
+}
+
+fs::path writeExampleResults(const fs::path& dir, const std::string& extraLines) {
+  const std::string runFile = writeExampleRunFile(dir, "End Time=0.05\nTimestep=1\nReport Series=1\n" + extraLines);
+  const io::RunConfig config = io::RunConfig::load(runFile, sim::talusRunKeys());
+  const sim::Scene scene = sim::loadScene(config);
+  sim::Simulation(scene, config, (dir / "out").string(), sim::OutputMode::New).run();
+  return dir / "out";
 }
 
 std::string readText(const fs::path& file) {

@@ -22,6 +22,9 @@ std::filesystem::path scratchDir(const std::string& name);
 /// Writes the example scene's run-file into `dir`, maps read from data/kot_dambreak, outputs into
 /// dir/out, with extra "Key=Value" lines replacing those keys. Returns its path.
 std::string writeExampleRunFile(const std::filesystem::path& dir, const std::string& extraLines = "");
+/// Runs the example scene for 0.05 s with a series frame every report into dir/out (through the
+/// engine, as `talus run`); returns dir/out.
+std::filesystem::path writeExampleResults(const std::filesystem::path& dir, const std::string& extraLines = "");
 /// The whole content of a text file ("" when it cannot be read).
 std::string readText(const std::filesystem::path& file);
 /// The last row of a diagnostics.csv, by column name (empty when the file has no data row).

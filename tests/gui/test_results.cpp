@@ -33,15 +33,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-/// Runs the example scene (3 s, a report every second: 4 series frames) into dir/out.
-fs::path writeResults(const fs::path& dir, const std::string& extraLines = "") {
-  const std::string runFile = writeExampleRunFile(dir, "End Time=0.05\nTimestep=1\nReport Series=1\n" + extraLines);
-  const io::RunConfig config = io::RunConfig::load(runFile, sim::talusRunKeys());
-  const sim::Scene scene = sim::loadScene(config);
-  sim::Simulation(scene, config, (dir / "out").string(), sim::OutputMode::New).run();
-  return dir / "out";
-}
-
 /// A raster as the viewer holds a layer: floats, NaN where nodata.
 std::vector<float> rasterValues(const fs::path& file) {
   const Raster r = io::readRaster(file.string());
@@ -76,7 +67,7 @@ void setStatus(const fs::path& out, const std::string& status) {
 }  // namespace
 
 TEST(OpenResults, TheLayerListOffersEveryMapAndThePlotsHoldTheDiagnostics) {
-  const fs::path out = writeResults(scratchDir("results_open"));
+  const fs::path out = writeExampleResults(scratchDir("results_open"));
   MainWindow w;
   w.setReportInDialogs(false);
   w.show();
@@ -111,7 +102,7 @@ TEST(OpenResults, TheLayerListOffersEveryMapAndThePlotsHoldTheDiagnostics) {
 // released and the work of friction and drag (series 0, 1, 2), one point per row of diagnostics.csv,
 // the last one the file's last row (read here independently).
 TEST(OpenResults, TwoPhaseResultsPlotTheEnergyBudget) {
-  const fs::path out = writeResults(scratchDir("results_energy"), "Include Initial Solids=1\nInitial Solid Height=water.tif\n");
+  const fs::path out = writeExampleResults(scratchDir("results_energy"), "Include Initial Solids=1\nInitial Solid Height=water.tif\n");
   MainWindow w;
   w.setReportInDialogs(false);
   w.show();
@@ -132,7 +123,7 @@ TEST(OpenResults, TwoPhaseResultsPlotTheEnergyBudget) {
 }
 
 TEST(OpenResults, MovingTheSliderShowsThatFramesRaster) {
-  const fs::path out = writeResults(scratchDir("results_slider"));
+  const fs::path out = writeExampleResults(scratchDir("results_slider"));
   MainWindow w;
   w.setReportInDialogs(false);
   w.show();
@@ -183,7 +174,7 @@ TEST(OpenResults, AMissingFolderOrOneThatIsNoOutputIsRefusedNamingIt) {
 }
 
 TEST(OpenResults, AnIncompleteRunOpensMarkedAsPartial) {
-  const fs::path out = writeResults(scratchDir("results_partial"));
+  const fs::path out = writeExampleResults(scratchDir("results_partial"));
   setStatus(out, "stopped");
   fs::remove(out / "series" / "hf_0003.tif");  // the frames it did not reach
   fs::remove(out / "series" / "vf_0003.tif");
@@ -221,7 +212,7 @@ TEST(OpenResults, TheCommandLineRefusesAFolderThatIsNoOutput) {
 }
 
 TEST(CompareResults, DifferenceLayersHoldTheOpenedRunMinusTheComparedOne) {
-  const fs::path a = writeResults(scratchDir("compare_a"));
+  const fs::path a = writeExampleResults(scratchDir("compare_a"));
   // The same scene with another roughness: the flow differs, the grid is the same.
   const fs::path dirB = scratchDir("compare_b");
   const std::string runFile = writeExampleRunFile(dirB, "End Time=0.05\nTimestep=1\nReport Series=1\nManning=0.2\n");
@@ -307,7 +298,7 @@ struct DropTarget : MainWindow {
 };
 
 TEST(OpenResults, DroppingAnOutputFolderOnTheWindowOpensIt) {
-  const fs::path out = writeResults(scratchDir("results_drop"));
+  const fs::path out = writeExampleResults(scratchDir("results_drop"));
   DropTarget w;
   w.setReportInDialogs(false);
   w.show();
@@ -322,7 +313,7 @@ TEST(OpenResults, DroppingAnOutputFolderOnTheWindowOpensIt) {
 
 TEST(OpenResults, OpenLisemNamedSeriesReplayToo) {
   // Series Names=openlisem: hf000000.002 in the output folder itself.
-  const fs::path out = writeResults(scratchDir("results_lisem"), "Series Names=openlisem\n");
+  const fs::path out = writeExampleResults(scratchDir("results_lisem"), "Series Names=openlisem\n");
   ASSERT_TRUE(fs::exists(out / "hf000000.002"));
   MainWindow w;
   w.setReportInDialogs(false);
