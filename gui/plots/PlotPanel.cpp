@@ -18,11 +18,14 @@ PlotPanel::PlotPanel(QWidget* parent) : QWidget(parent) {
   released_ = kinetic_->addSeries("released", QColor(60, 60, 60));
   work_ = kinetic_->addSeries("friction and drag", QColor(160, 90, 30));
   distance_ = front_->addSeries("front", QColor(120, 60, 200));
+  mass_ = new TimeSeriesPlot("particle mass", "kg");
+  particles_ = mass_->addSeries("particles", QColor(160, 90, 30));
   auto* grid = new QGridLayout(this);
   grid->addWidget(volume_, 0, 0);
   grid->addWidget(outflow_, 0, 1);
   grid->addWidget(kinetic_, 1, 0);
   grid->addWidget(front_, 1, 1);
+  grid->addWidget(mass_, 2, 0);
 }
 
 void PlotPanel::addProgress(const RunProgress& p, bool twoPhase) {
@@ -37,6 +40,7 @@ void PlotPanel::addProgress(const RunProgress& p, bool twoPhase) {
     kinetic_->append(released_, p.time, p.energyReleased);
     kinetic_->append(work_, p.time, p.frictionWork);
   }
+  if (p.particleMass > 0) mass_->append(particles_, p.time, p.particleMass);
 }
 
 void PlotPanel::addSnapshot(const sim::ViewSnapshot& s) { front_->append(distance_, s.time, s.frontDistance); }
@@ -52,6 +56,7 @@ void PlotPanel::setDiagnostics(const DiagnosticsTable& table) {
   const std::vector<double>* energy = table.column("kinetic_energy_J");
   const std::vector<double>* released = table.column("energy_released_J");
   const std::vector<double>* work = table.column("friction_drag_work_J");
+  const std::vector<double>* mass = table.column("particle_mass_kg");
   const bool twoPhase = solid && std::any_of(solid->begin(), solid->end(), [](double v) { return v != 0; });
   for (std::size_t r = 0; r < t->size(); ++r) {
     const double time = (*t)[r];
@@ -65,11 +70,12 @@ void PlotPanel::setDiagnostics(const DiagnosticsTable& table) {
     if (energy) kinetic_->append(energy_, time, (*energy)[r]);
     if (twoPhase && released) kinetic_->append(released_, time, (*released)[r]);
     if (twoPhase && work) kinetic_->append(work_, time, (*work)[r]);
+    if (mass && (*mass)[r] > 0) mass_->append(particles_, time, (*mass)[r]);
   }
 }
 
 void PlotPanel::clear() {
-  for (TimeSeriesPlot* p : {volume_, outflow_, kinetic_, front_}) p->clear();
+  for (TimeSeriesPlot* p : {volume_, outflow_, kinetic_, front_, mass_}) p->clear();
 }
 
 }  // namespace talus::gui

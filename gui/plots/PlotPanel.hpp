@@ -1,6 +1,6 @@
 // The run's time series, drawn live: volume per phase, cumulative outflow, the energy (kinetic; in
-// the two-phase model also the potential energy released and the work of friction and drag) and the
-// position of the flow front.
+// the two-phase model also the potential energy released and the work of friction and drag), the
+// position of the flow front and, in runs with particles, the particles' mass.
 #pragma once
 #include <QWidget>
 
@@ -27,10 +27,12 @@ class PlotPanel : public QWidget {
   const TimeSeriesPlot& volumePlot() const { return *volume_; }
   const TimeSeriesPlot& outflowPlot() const { return *outflow_; }
   const TimeSeriesPlot& energyPlot() const { return *kinetic_; }
+  /// The particles' mass (runs with particles only; their material is not in the grid's volumes).
+  const TimeSeriesPlot& massPlot() const { return *mass_; }
 
  private:
-  TimeSeriesPlot *volume_, *outflow_, *kinetic_, *front_;
-  int fluid_, solid_, total_, out_, energy_, released_, work_, distance_;
+  TimeSeriesPlot *volume_, *outflow_, *kinetic_, *front_, *mass_;
+  int fluid_, solid_, total_, out_, energy_, released_, work_, distance_, particles_;
 };
 
 }  // namespace talus::gui

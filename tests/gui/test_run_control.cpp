@@ -10,6 +10,8 @@
 #include <string>
 
 #include "GuiTestSupport.hpp"
+#include "plots/PlotPanel.hpp"
+#include "results/DiagnosticsTable.hpp"
 #include "io/RasterIO.hpp"
 #include "io/RunConfig.hpp"
 #include "sim/RunControl.hpp"
@@ -114,6 +116,20 @@ TEST(RunControl, ProgressCarriesTheParticleMassAndTheEnergyBudget) {
     EXPECT_GT(seeded, 0.0);
     EXPECT_DOUBLE_EQ(first, seeded);
     EXPECT_DOUBLE_EQ(last, seeded);
+    // The Plots draw it: from progress reports, and from the run's diagnostics.csv when replayed.
+    talus::gui::PlotPanel plots;
+    talus::gui::RunProgress p;
+    p.time = 0.5;
+    p.particleMass = seeded;
+    plots.addProgress(p, true);
+    ASSERT_EQ(plots.massPlot().size(0), 1u);
+    EXPECT_DOUBLE_EQ(plots.massPlot().last(0).y(), seeded);
+    const auto table = talus::gui::DiagnosticsTable::read(QString::fromStdString((dir / "out" / "diagnostics.csv").string()));
+    plots.setDiagnostics(table);
+    const std::vector<double>* column = table.column("particle_mass_kg");
+    ASSERT_NE(column, nullptr);
+    ASSERT_EQ(plots.massPlot().size(0), column->size());
+    EXPECT_NEAR(plots.massPlot().last(0).y(), seeded, 1e-8 * seeded);  // the file holds 9 significant digits
   }
   {
     const fs::path dir = guitest::scratchDir("progress_energy");
