@@ -1,5 +1,6 @@
 #include "app/MainWindow.hpp"
 
+#include <QActionGroup>
 #include <QApplication>
 #include <QCloseEvent>
 #include <QDockWidget>
@@ -134,6 +135,17 @@ void MainWindow::buildActions() {
     viewer_->setMode(on ? ViewCamera::Mode::Tilted : ViewCamera::Mode::Map);
   });
   view->addAction("&Reset view", this, [this] { viewer_->resetView(); });
+  QMenu* exaggeration = view->addMenu("&Vertical exaggeration (3D)");
+  auto* factors = new QActionGroup(this);
+  for (const double f : {1.0, 1.5, 2.0, 3.0, 5.0, 10.0}) {
+    QAction* a = exaggeration->addAction(QString("%1\u00d7").arg(f), this, [this, f] {
+      viewer_->setVerticalExaggeration(f);
+      if (viewer_->mode() != ViewCamera::Mode::Tilted) tilted_->setChecked(true);
+    });
+    a->setCheckable(true);
+    a->setChecked(f == 1.0);
+    factors->addAction(a);
+  }
 
   QMenu* tools = menuBar()->addMenu("&Tools");
   drawRelease_ = tools->addAction("Draw &release area", this, [this] { startSketch(MapSketch::Tool::Polygon); });

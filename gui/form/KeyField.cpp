@@ -1,5 +1,7 @@
 #include "form/KeyField.hpp"
 
+#include "form/DevicePicker.hpp"
+
 #include <QCheckBox>
 #include <QComboBox>
 #include <QDir>
@@ -11,6 +13,7 @@
 #include <QVBoxLayout>
 #include <tuple>
 
+#include "form/DevicePicker.hpp"
 #include "form/MapPreview.hpp"
 
 namespace talus::gui {
@@ -93,6 +96,12 @@ KeyField::KeyField(const io::KeySpec& spec, QWidget* parent) : QWidget(parent), 
   if (!spec.unit.empty() && spec.unit != "-") {
     unit_ = new QLabel(shown_);
     row->addWidget(unit_);
+  }
+  if (spec.name == "Device") {
+    row->addWidget(new DevicePicker([this](const QString& selector) {
+      line_->setText(selector);
+      emit edited(value());
+    }));
   }
   if (spec.type == io::KeyType::Directory || spec.type == io::KeyType::Map) {
     auto* pick = new QToolButton;

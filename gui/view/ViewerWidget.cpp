@@ -3,6 +3,7 @@
 #include <QKeyEvent>
 #include <QMouseEvent>
 #include <QWheelEvent>
+#include <algorithm>
 #include <cmath>
 
 #include "render/ParticleRenderer.hpp"
@@ -143,7 +144,14 @@ QVector3D ViewerWidget::worldOrigin() const {
                    terrain_ ? terrain_->elevationMid() : 0.0f);
 }
 
-float ViewerWidget::exaggeration() const { return camera_.mode() == ViewCamera::Mode::Tilted ? 1.0f : 0.0f; }
+float ViewerWidget::exaggeration() const {
+  return camera_.mode() == ViewCamera::Mode::Tilted ? float(verticalExaggeration_) : 0.0f;
+}
+
+void ViewerWidget::setVerticalExaggeration(double factor) {
+  verticalExaggeration_ = std::clamp(factor, 0.1, 50.0);
+  update();
+}
 
 void ViewerWidget::uploadPending() {
   if (terrainDirty_ && grid_.nx == 0) {

@@ -55,6 +55,10 @@ class ViewerWidget : public QOpenGLWidget, protected QOpenGLFunctions_3_3_Core {
   void setParticleStyle(const ParticleStyle& style);
   void setParticleRamp(const QString& ramp);
   void setMode(ViewCamera::Mode mode);
+  /// Vertical exaggeration of the tilted 3D view (terrain and particles; 1 = true heights; clamped
+  /// to 0.1..50). The map view is flat whatever it is.
+  void setVerticalExaggeration(double factor);
+  double verticalExaggeration() const { return verticalExaggeration_; }
   ViewCamera::Mode mode() const { return camera_.mode(); }
   /// Frames the whole terrain.
   void resetView();
@@ -125,6 +129,7 @@ class ViewerWidget : public QOpenGLWidget, protected QOpenGLFunctions_3_3_Core {
   QPoint lastMouse_;
   long long frames_ = 0;
   MapSketch* sketch_;
+  double verticalExaggeration_ = 1;
 };
 
 }  // namespace talus::gui
