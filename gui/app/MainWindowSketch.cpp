@@ -37,6 +37,13 @@ void MainWindow::startSketch(MapSketch::Tool tool) {
     log_->append("error: open a run-file whose DEM can be read before drawing a release area");
     return;
   }
+  const Grid* g = nullptr;
+  const std::vector<float>* z = nullptr;
+  const std::vector<sim::GridLayerInfo>* layers = nullptr;
+  if (!sceneOnScreen(g, z, layers)) {
+    log_->append("error: nothing to draw on: open a run-file or results first");
+    return;
+  }
   tilted_->setChecked(false);  // drawing is on the map view
   viewer_->sketch().start(tool);
   viewer_->setFocus();
