@@ -184,7 +184,9 @@ TEST(WellBalanced, LakeAtRestRoughDemSplitScheme) {
           EXPECT_LT(r.maxDryDepth, dbl ? kDryFilmDouble : kDryFilmFloat) << tag;
           // Between walls the split scheme is as still as the unsplit one (7e-15 m/s measured, the
           // round-off bound above is 1e-13).
-          if (dbl && edge == fl::Boundary::Wall) EXPECT_LT(r.maxSpeed, 1e-13) << tag;
+          if (dbl && edge == fl::Boundary::Wall) {
+            EXPECT_LT(r.maxSpeed, 1e-13) << tag;
+          }
         }
 }
 
