@@ -267,8 +267,10 @@ __kernel void debris_stage(__constant const FlowParams* p, __constant const Debr
     const Side fmR = {own.lo.hf, own.lo.ef, own.lo.uf, own.lo.vf, g};
     const Side fpL = {own.hi.hf, own.hi.ef, own.hi.uf, own.hi.vf, g};
     const Side fpR = {fp_cell.lo.hf, fp_cell.lo.ef, fp_cell.lo.uf, fp_cell.lo.vf, gpp};
-    const Face Fm = face_between(m_in, fmL, 1, fmR, kind_m);
-    const Face Fp = face_between(1, fpL, p_in, fpR, kind_p);
+    // Open edges: the zero-gradient ghost (far = NAN: two-phase runs refuse level edges, whose
+    // characteristic ghost the water solver has; docs/numerics.md).
+    const Face Fm = face_between(m_in, fmL, 1, fmR, kind_m, NAN);
+    const Face Fp = face_between(1, fpL, p_in, fpR, kind_p, NAN);
 
     // Solid faces: each side's lateral pressure with its cell's K (active where its solids extend
     // along dir, passive where they contract), from its face thickness of the mixture, and the

@@ -80,8 +80,9 @@ void flow_tile_diagnostics(__constant const FlowParams* p, __global const uchar*
     // Dimensionally split scheme: each sweep's Courant number is along its own direction, with the
     // same slope speed w per direction as the unsplit sum. A smaller weight (the speed a film gains
     // within the step, (a + sqrt(a^2 + 4 cfl w^2)) / 2) kept a lake at rest between walls still but
-    // let a lake against an open edge drain at m/s within 150 s (the outflow-only edge is a one-way
-    // valve, docs/numerics.md), so w keeps its full weight until that edge is mended.
+    // let a lake against an open edge drain at m/s within 150 s: the zero-gradient open edge leaves
+    // such a lake only neutrally at rest and it drains by itself over a rough bed, faster with
+    // longer steps (docs/numerics.md; level edges keep it at rest). w keeps its full weight.
     speed = hk > (real)0 ? fmax(fabs(u), fabs(v)) + cw + slope_speed[k] : (real)0;
 #else
     speed = hk > (real)0 ? fabs(u) + fabs(v) + (real)2 * (cw + slope_speed[k]) : (real)0;

@@ -23,12 +23,13 @@
 
 #define BOUNDARY_WALL 0
 #define BOUNDARY_OPEN 1
+#define BOUNDARY_LEVEL 2
 
 /// Run constants in __constant memory. Layout checked against the host struct by static_assert.
 typedef struct {
   int nx, ny;             // cells
   int tiles_x, tiles_y;   // tiles of TILE x TILE cells
-  int edge_boundary;      // BOUNDARY_WALL or BOUNDARY_OPEN at the raster edge
+  int edge_boundary;      // BOUNDARY_WALL, BOUNDARY_OPEN or BOUNDARY_LEVEL at the raster edge
   int nodata_boundary;    // same, at faces to nodata cells
   int skip_dry_tiles;     // 0: every tile active
   int pad0;

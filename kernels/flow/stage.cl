@@ -55,7 +55,7 @@ inline Side side_lo(CellFaces f, real g) { Side s = {f.h_lo, f.e_lo, f.un_lo, f.
 __kernel __attribute__((reqd_work_group_size(TILE, TILE, 1)))
 void flow_stage(__constant const FlowParams* p, __global const uchar* mask, __global const int* tile_list,
                 __global const real* b, __global const real* gp, __global const real* gn,
-                __global const real* h_base, __global const real* qx_base, __global const real* qy_base,
+                __global const real* far_level, __global const real* h_base, __global const real* qx_base, __global const real* qy_base,
                 __global const real* h_st, __global const real* qx_st, __global const real* qy_st,
                 __global real* h_out, __global real* qx_out, __global real* qy_out, __global real* out_step,
                 const real dt, const real a, const real w_out, const int first_stage, const int dir_mask) {
@@ -107,10 +107,12 @@ void flow_stage(__constant const FlowParams* p, __global const uchar* mask, __gl
     const CellFaces own = local_faces(lh, le, lu, lv, lin, la, lb, dir);
     CellFaces nb = own;
     if (m_in) nb = local_faces(lh, le, lu, lv, lin, la - da, lb - db, dir);
-    const Face fm = face_between(m_in, side_hi(nb, lg[sm]), 1, side_lo(own, g), boundary_kind(p, i - da, j - db));
+    // At a level edge the outside is still water at the cell's far level (its initial surface).
+    const real far = far_level[k];
+    const Face fm = face_between(m_in, side_hi(nb, lg[sm]), 1, side_lo(own, g), boundary_kind(p, i - da, j - db), far);
     nb = own;
     if (p_in) nb = local_faces(lh, le, lu, lv, lin, la + da, lb + db, dir);
-    const Face fp = face_between(1, side_hi(own, g), p_in, side_lo(nb, lg[sp]), boundary_kind(p, i + da, j + db));
+    const Face fp = face_between(1, side_hi(own, g), p_in, side_lo(nb, lg[sp]), boundary_kind(p, i + da, j + db), far);
 
     mass[dir] = fp.fh - fm.fh;
     // Normal momentum: advective flux, pressure with the cell's own g_p, hydrostatic corrections,

@@ -9,7 +9,7 @@ template <class Real>
 struct FlowParamsT {
   int32_t nx, ny;
   int32_t tilesX, tilesY;
-  int32_t edgeBoundary;    // 0 wall, 1 open
+  int32_t edgeBoundary;    // 0 wall, 1 open, 2 level
   int32_t nodataBoundary;  // 0 wall, 1 open
   int32_t skipDryTiles;
   int32_t pad0;

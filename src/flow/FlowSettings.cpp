@@ -21,7 +21,8 @@ RiemannSolver parseRiemann(const std::string& name) {
 Boundary parseBoundary(const std::string& name) {
   if (name == "wall") return Boundary::Wall;
   if (name == "open") return Boundary::Open;
-  throw InputError("boundary type '" + name + "' is not one of: open, wall");
+  if (name == "level") return Boundary::Level;
+  throw InputError("boundary type '" + name + "' is not one of: open, wall, level");
 }
 
 DepthPressure parseDepthPressure(const std::string& name) {

@@ -10,7 +10,11 @@ namespace talus::flow {
 /// Slope limiter of the MUSCL reconstruction; None gives the first-order scheme (for comparisons).
 enum class Limiter { Minmod = 0, VanLeer = 1, MC = 2, None = 3 };
 enum class RiemannSolver { HLL = 0, HLLC = 1 };
-enum class Boundary { Wall = 0, Open = 1 };
+/// What lies beyond the raster edge or a nodata cell: a wall; an open edge (outflow only, the outside
+/// a continuation of the inside: zero-gradient ghost); or a level edge (outflow only, the outside
+/// water at rest at the edge cell's initial surface, dry outside a free overfall: characteristic
+/// ghost, kernels/flow/riemann.cl open_ghost; single-phase model).
+enum class Boundary { Wall = 0, Open = 1, Level = 2 };
 enum class DepthPressure { Cos2, Cos4 };
 /// Time integration of the water: SSP-RK2 over both directions' faces at once (CFL over the sum of
 /// the two directions' wave speeds), or dimensionally split sweeps, one SSP-RK2 per direction with

@@ -59,6 +59,7 @@ FlowSolver::FlowSolver(compute::Context& ctx, const Grid& grid, const FlowSettin
       gn_(ctx, grid.cells(), "g_n"),
       manning_(ctx, grid.cells(), "manning"),
       slopeSpeed_(ctx, grid.cells(), "slope speed"),
+      farLevel_(ctx, grid.cells(), "outside level"),
       bedSlope_(ctx, 2 * grid.cells(), "bed slope"),
       h_(ctx, grid.cells(), "h"),
       qx_(ctx, grid.cells(), "qx"),
@@ -80,6 +81,8 @@ FlowSolver::FlowSolver(compute::Context& ctx, const Grid& grid, const FlowSettin
   if (settings.particleBed && !settings.twoPhase) throw InputError("the particle bed needs the two-phase grid model");
   if (settings.twoPhase && settings.scheme == TimeScheme::Split)
     throw InputError("the dimensionally split time scheme is for water only (the two-phase model runs unsplit)");
+  if (settings.twoPhase && (settings.edge == Boundary::Level || settings.nodata == Boundary::Level))
+    throw InputError("level boundaries are for water only (the two-phase model has open and wall boundaries)");
   const std::string opts = buildOptions(settings);
   stage_ = compute::Kernel(ctx.program("flow/stage.cl", opts), "flow_stage");
   friction_ = compute::Kernel(ctx.program("flow/friction.cl", opts), "flow_friction");
@@ -131,6 +134,11 @@ void FlowSolver::setInput(const FlowInput& in, double startTime) {
   for (std::size_t k = 0; k < n; ++k)
     if (in.mask[k]) maxSlopeSpeed_ = std::max(maxSlopeSpeed_, sg.slopeSpeed[k]);
   h_.upload(h);
+  {
+    std::vector<double> far(n);
+    for (std::size_t k = 0; k < n; ++k) far[k] = bed[k] + h[k];
+    farLevel_.upload(far);
+  }
   // Momentum of dry and outside cells is discarded, as the update does after every stage.
   auto momentum = [&](const std::vector<double>& q, const char* what) {
     if (q.empty()) return std::vector<double>(n, 0.0);
@@ -267,7 +275,7 @@ void FlowSolver::enqueueStage(const compute::RealBuffer& hSt, const compute::Rea
                                bool firstStage, int directions) {
   // Base state of the RK combination is always U0 (h_, qx_, qy_); in stage 2 the output is U0 too,
   // which is safe because each work-item reads its own cell's base value before writing it.
-  stage_.bind(params_, mask_, tileList_, bed_, gp_, gn_, h_, qx_, qy_, hSt, qxSt, qySt, hOut, qxOut, qyOut,
+  stage_.bind(params_, mask_, tileList_, bed_, gp_, gn_, farLevel_, h_, qx_, qy_, hSt, qxSt, qySt, hOut, qxOut, qyOut,
               outStep_, compute::RealArg{dt}, compute::RealArg{a}, compute::RealArg{0.5 * dt}, firstStage ? 1 : 0,
               directions);
   stage_.launch(tileRange(), kLocal2D, firstStage ? "flow_stage_1" : "flow_stage_2");

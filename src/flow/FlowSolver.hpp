@@ -208,6 +208,10 @@ class FlowSolver {
   std::size_t domainCells_ = 0;  ///< cells inside the domain (the rain volume is rainDepth x these x dx^2)
   bool hasFriction_ = true;  ///< false when Manning's n is zero everywhere: friction is not launched
   compute::RealBuffer bed_, gp_, gn_, manning_, slopeSpeed_;
+  /// The water level outside a `level` edge (Boundary::Level), per cell: its initial surface b + h
+  /// (its bed where it starts dry). Only edge cells read it (kernels/flow/riemann.cl, open_ghost); it
+  /// follows from the input, so a resumed run sets it again from its scene.
+  compute::RealBuffer farLevel_;
   compute::RealBuffer bedSlope_;  ///< bed slope b_x, b_y (2 n values, flow/SlopeGravity.hpp): Manning, two-phase diagnostics
   compute::RealBuffer h_, qx_, qy_, h1_, qx1_, qy1_;
   compute::RealBuffer outStep_, partial_;

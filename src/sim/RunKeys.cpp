@@ -230,8 +230,11 @@ void addNumericsKeys(KeyRegistry& r) {
       << choice("Riemann Solver", {"hll", "hllc"}, "hllc", "approximate Riemann solver of the fluxes")
       << choice("Precision", {"float", "double"}, "float", "floating-point precision on the device")
       << text("Device", "", "device selector: index or name substring; empty = automatic")
-      << choice("Boundary Type", {"open", "wall"}, "open", "boundary condition at the raster edge")
-      << choice("Nodata Boundary Type", {"wall", "open"}, "wall", "boundary condition at nodata cells")
+      << choice("Boundary Type", {"open", "wall", "level"}, "open",
+                "boundary condition at the raster edge: open (outflow only, the outside continues the inside), "
+                "wall, or level (outflow only against still water at the edge's initial surface outside, a free "
+                "overfall where it starts dry; keeps standing water at the edge at rest; single-phase runs)")
+      << choice("Nodata Boundary Type", {"wall", "open", "level"}, "wall", "boundary condition at nodata cells (as Boundary Type)")
       << real("Minimum Flow Height", "1e-6", "m", 0, 1, "dry threshold below which velocity is zero")
       << flag("Skip Dry Tiles", "1", "skip 16x16-cell tiles with no flow within one tile (0: update every cell)");
 }

@@ -27,6 +27,9 @@ CpuFlowReference::CpuFlowReference(const Grid& grid, const flow::FlowSettings& s
   if (qy_.empty()) qy_.assign(n, 0.0);
   for (std::size_t k = 0; k < n; ++k)
     if (!mask_[k]) h_[k] = 0.0, bed_[k] = 0.0;
+  // The level of the water outside an open edge: the edge cell's initial surface.
+  farLevel_.resize(n);
+  for (std::size_t k = 0; k < n; ++k) farLevel_[k] = bed_[k] + h_[k];
   // The dry-cell rule applies to the input too: no momentum where h <= h_dry (or outside).
   for (std::size_t k = 0; k < n; ++k)
     if (h_[k] <= settings_.hDry) qx_[k] = 0.0, qy_[k] = 0.0;
@@ -152,13 +155,19 @@ CpuFlowReference::FaceFlux CpuFlowReference::faceFlux(const State& s, int i, int
     const Faces c = reconstruct(s, i, j, dir);
     R = {c.hLo, c.etaLo, c.unLo, c.utLo, gp_[grid_.index(i, j)]};
   }
-  // Ghost cell: a copy of the inside face state, normal velocity mirrored at a wall. An open
-  // boundary lets water out only: while the inside flow moves away from it, it is a wall.
+  // Ghost cell: a copy of the inside face state, normal velocity mirrored at a wall. Open and level
+  // boundaries let water out only: while the inside flow moves away from them, they are walls; while
+  // it moves towards a level edge, the ghost meets the inside's outgoing Riemann invariant u + 2c (outward normal)
+  // with the incoming one of water at rest at the inside cell's far level outside, -2 sqrt(g d)
+  // with d the far level's height over the inside face bed (0 where the outside is dry), unless the
+  // outflow is supercritical (then the copy stands); and if that ghost would let water in, the face
+  // is a wall after all.
   auto kind = [&](int a, int b) {
     const bool offRaster = a < 0 || b < 0 || a >= grid_.nx || b >= grid_.ny;
     return offRaster ? settings_.edge : settings_.nodata;
   };
   bool wall = false;
+  const Side inside = lIn ? L : R;
   if (!lIn) {
     wall = kind(li, lj) == Boundary::Wall || R.un > 0.0;
     L = R;
@@ -169,17 +178,45 @@ CpuFlowReference::FaceFlux CpuFlowReference::faceFlux(const State& s, int i, int
     R = L;
     if (wall) R.un = -L.un;
   }
+  const Boundary outsideKind = !lIn ? kind(li, lj) : kind(i, j);
+  const bool open = (!lIn || !rIn) && !wall && outsideKind == Boundary::Level;
+  if (open) {
+    const double outward = lIn ? 1.0 : -1.0;  // the outside lies on the plus side when L is inside
+    const double un = outward * inside.un, c = std::sqrt(inside.g * inside.h);
+    if (un < c) {
+      const double bedAtFace = inside.eta - inside.h;
+      const double far = farLevel_[lIn ? grid_.index(li, lj) : grid_.index(i, j)];
+      const double plus = un + 2.0 * c, minus = -2.0 * std::sqrt(inside.g * std::max(0.0, far - bedAtFace));
+      const double cGhost = std::max(0.0, (plus - minus) / 4.0);
+      Side& ghost = lIn ? R : L;
+      ghost.un = outward * (plus + minus) / 2.0;
+      ghost.h = cGhost * cGhost / inside.g;
+      ghost.eta = bedAtFace + ghost.h;
+    }
+  }
   // Chen & Noelle (2017, eq. 3.4-3.9): face bed = higher face bed, but not above the lower free
   // surface; a side below it is re-measured from it (Audusse et al. 2004), a side above it keeps its
   // thickness and takes the bed force of the drop, h (z* - z).
-  const double zl = L.eta - L.h, zr = R.eta - R.h;
-  const double bedFace = std::min(std::max(zl, zr), std::min(L.eta, R.eta));
-  const double hl = bedFace >= zl ? std::max(0.0, L.eta - bedFace) : L.h;
-  const double hr = bedFace >= zr ? std::max(0.0, R.eta - bedFace) : R.h;
-  f = riemann(hl, L.un, L.ut, hr, R.un, R.ut, std::max(L.g, R.g));
+  auto solve = [&]() {
+    const double zl = L.eta - L.h, zr = R.eta - R.h;
+    const double bedFace = std::min(std::max(zl, zr), std::min(L.eta, R.eta));
+    const double hl = bedFace >= zl ? std::max(0.0, L.eta - bedFace) : L.h;
+    const double hr = bedFace >= zr ? std::max(0.0, R.eta - bedFace) : R.h;
+    FaceFlux r = riemann(hl, L.un, L.ut, hr, R.un, R.ut, std::max(L.g, R.g));
+    r.corrMinus = bedFace >= zl ? 0.5 * (L.h * L.h - hl * hl) : L.h * (bedFace - zl);
+    r.corrPlus = bedFace >= zr ? 0.5 * (R.h * R.h - hr * hr) : R.h * (bedFace - zr);
+    return r;
+  };
+  f = solve();
+  const bool inflow = (!lIn && f.mass > 0.0) || (!rIn && f.mass < 0.0);
+  if (open && inflow) {
+    wall = true;
+    Side& ghost = lIn ? R : L;
+    ghost = inside;
+    ghost.un = -inside.un;
+    f = solve();
+  }
   if (wall) f.mass = 0.0, f.tangentialMomentum = 0.0;
-  f.corrMinus = bedFace >= zl ? 0.5 * (L.h * L.h - hl * hl) : L.h * (bedFace - zl);
-  f.corrPlus = bedFace >= zr ? 0.5 * (R.h * R.h - hr * hr) : R.h * (bedFace - zr);
   return f;
 }
 

@@ -10,8 +10,9 @@
 // zero next to outside cells), hydrostatic reconstruction (Audusse et al. 2004), an HLL or HLLC
 // flux with the pressure part scaled by each cell's own g_p, the well-balanced centred bed source,
 // and the (g_p - g_n) h db/dx term of the cos^4 depth-pressure option. Outside cells (nodata or
-// off the raster) are ghost cells: mirrored with the normal velocity reversed at walls, copied at
-// open boundaries. The dry-cell rule: h <= h_dry sets the momentum to zero and h to max(h, 0).
+// off the raster) are ghost cells: mirrored with the normal velocity reversed at walls; at open and
+// level boundaries outflow only, copied at open ones, from characteristics against water at rest at
+// the edge cell's initial surface at level ones (kernels/flow/riemann.cl, open_ghost). The dry-cell rule: h <= h_dry sets the momentum to zero and h to max(h, 0).
 // Velocities are q / h above h_dry and zero below; Manning friction uses g (as friction.cl states).
 // Like FlowSolver::setInput, the constructor discards input momentum on dry and outside cells.
 //
@@ -91,6 +92,7 @@ class CpuFlowReference {
   std::vector<double> bed_, manning_, gn_, gp_, slope_;  // slope_: bed-slope CFL speed
   std::vector<double> bx_, by_;  // bed slope for Manning along the bed (zero with slope correction off)
   std::vector<double> h_, qx_, qy_, hMax_, vMax_, arrival_;
+  std::vector<double> farLevel_;  // the water level outside an open edge: the initial surface b + h
   double time_ = 0;
   double clampedVolume_ = 0;
   flow::FlowDiagnostics diag_;
