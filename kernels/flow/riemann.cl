@@ -90,21 +90,10 @@ typedef struct {
   real corr_p;  // same for the plus-side cell
 } Face;
 
-/// The face between side m (minus) and side p (plus). An outside side (m_in or p_in zero) becomes
-/// the ghost of the inside one: a wall mirrors it with the normal velocity reversed; open and level
-/// boundaries (kinds BOUNDARY_OPEN, BOUNDARY_LEVEL) are outflow only: while the inside flow moves
-/// away from them, or while a level edge's ghost would push water in, they act as walls, so no water
-/// ever enters through them. While the flow moves towards them, the ghost of an open edge is the
-/// inside state (zero gradient: the outside continues the inside), that of a level edge the
-/// characteristic ghost of open_ghost against still water at level `far` outside (the inside cell's
-/// initial surface; NAN where no level is known: the two-phase fluid, which refuses level edges).
-/// Walls pass no mass and no tangential momentum.
-/// Replaces an outside side by the ghost of the inside one (see face_between); returns 1 when the
-/// face acts as a wall. Shared by the fluid and the solid fluxes.
 /// The ghost of a level edge from characteristics (subcritical outflow needs one condition from
 /// outside; the zero-gradient ghost of an open edge gives none, and a lake against such an edge is
-/// only neutrally at rest: over a rough bed it starts to drain by itself, docs/numerics.md). The outside is water at
-/// rest at level `far` over the inside face's bed: the ghost carries the inside's outgoing Riemann
+/// only neutrally at rest: over a rough bed it starts to drain by itself, docs/numerics.md). The
+/// outside is water at rest at level `far` over the inside face's bed: the ghost carries the inside's outgoing Riemann
 /// invariant u_n + 2c and the outside's incoming one, -2 sqrt(g (far - z)) (0 for a dry outside, a
 /// free overfall), so u_g = (R+ + R-)/2, c_g = (R+ - R-)/4 (Toro 2001, "Shock-capturing methods for
 /// free-surface shallow flows", sec. 4.4 and 12.3). Supercritical outflow (u_n >= c) needs no
@@ -122,6 +111,40 @@ inline void open_ghost(const Side* in, Side* gh, real s, real far) {
   gh->e = z + gh->h;
 }
 
+/// The flux between two face states by the hydrostatic reconstruction with a subcell face bed (Chen
+/// & Noelle 2017, SIAM J. Numer. Anal. 55, eq. 3.4-3.9): the face bed is the higher of the two face
+/// beds, but never above the lower of the two free surfaces, z* = min(max(z_m, z_p), min(e_m, e_p)).
+/// A side whose face bed lies below z* meets a rise: the part of its column above z* reaches the
+/// face (Audusse's h* = e - z*, >= 0 because z* <= e). A side above z* (its neighbour's surface is
+/// lower than its own bed: a thin sheet on a steep coarse slope, water at a cliff edge) keeps its
+/// thickness.
+typedef struct {
+  real zm, zp, bs, hm, hp;  // face beds, z*, and the thicknesses that reach the face
+  FaceFlux r;
+} HydrostaticFace;
+
+inline HydrostaticFace hydrostatic_face(Side m, Side p) {
+  HydrostaticFace f;
+  f.zm = m.e - m.h;
+  f.zp = p.e - p.h;
+  f.bs = fmin(fmax(f.zm, f.zp), fmin(m.e, p.e));
+  f.hm = f.bs >= f.zm ? fmax((real)0, m.e - f.bs) : m.h;
+  f.hp = f.bs >= f.zp ? fmax((real)0, p.e - f.bs) : p.h;
+  f.r = riemann_flux(f.hm, m.un, m.ut, f.hp, p.un, p.ut, fmax(m.g, p.g));
+  return f;
+}
+
+/// The face between side m (minus) and side p (plus). An outside side (m_in or p_in zero) becomes
+/// the ghost of the inside one: a wall mirrors it with the normal velocity reversed; open and level
+/// boundaries (kinds BOUNDARY_OPEN, BOUNDARY_LEVEL) are outflow only: while the inside flow moves
+/// away from them, or while a level edge's ghost would push water in, they act as walls, so no water
+/// ever enters through them. While the flow moves towards them, the ghost of an open edge is the
+/// inside state (zero gradient: the outside continues the inside), that of a level edge the
+/// characteristic ghost of open_ghost against still water at level `far` outside (the inside cell's
+/// initial surface; NAN where no level is known: the two-phase fluid, which refuses level edges).
+/// Walls pass no mass and no tangential momentum.
+/// Replaces an outside side by the ghost of the inside one (see face_between); returns 1 when the
+/// face acts as a wall. Shared by the fluid and the solid fluxes.
 inline int ghost_sides(int m_in, Side* m, int p_in, Side* p, int kind) {
   int wall = 0;
   if (!m_in) {
@@ -145,21 +168,10 @@ inline Face face_between(int m_in, Side m, int p_in, Side p, int kind, real far)
     if (!m_in) open_ghost(&p, &m, (real)-1, far);
     else open_ghost(&m, &p, (real)1, far);
   }
-  // Hydrostatic reconstruction with a subcell face bed (Chen & Noelle 2017, SIAM J. Numer. Anal. 55,
-  // eq. 3.4-3.9): the face bed is the higher of the two face beds, but never above the lower of the
-  // two free surfaces, z* = min(max(z_m, z_p), min(e_m, e_p)).
-  real zm = m.e - m.h, zp = p.e - p.h;
-  real bs = fmin(fmax(zm, zp), fmin(m.e, p.e));
-  // A side whose face bed lies below z* meets a rise: the part of its column above z* reaches the
-  // face (Audusse's h* = e - z*, >= 0 because z* <= e). A side above z* (its neighbour's surface is
-  // lower than its own bed: a thin sheet on a steep coarse slope, water at a cliff edge) keeps its
-  // thickness.
-  real hm = bs >= zm ? fmax((real)0, m.e - bs) : m.h;
-  real hp = bs >= zp ? fmax((real)0, p.e - bs) : p.h;
-  FaceFlux r = riemann_flux(hm, m.un, m.ut, hp, p.un, p.ut, fmax(m.g, p.g));
+  HydrostaticFace hf = hydrostatic_face(m, p);
   // Outflow only: where the outside's level would push water in (the inside has fallen below it),
-  // the open face is a wall (the inside state mirrored), as while the inside flows away from it.
-  if (characteristic && ((!m_in && r.fh > (real)0) || (!p_in && r.fh < (real)0))) {
+  // the level face is a wall (the inside state mirrored), as while the inside flows away from it.
+  if (characteristic && ((!m_in && hf.r.fh > (real)0) || (!p_in && hf.r.fh < (real)0))) {
     wall = 1;
     if (!m_in) {
       m = p;
@@ -168,13 +180,10 @@ inline Face face_between(int m_in, Side m, int p_in, Side p, int kind, real far)
       p = m;
       p.un = -m.un;
     }
-    zm = m.e - m.h;
-    zp = p.e - p.h;
-    bs = fmin(fmax(zm, zp), fmin(m.e, p.e));
-    hm = bs >= zm ? fmax((real)0, m.e - bs) : m.h;
-    hp = bs >= zp ? fmax((real)0, p.e - bs) : p.h;
-    r = riemann_flux(hm, m.un, m.ut, hp, p.un, p.ut, fmax(m.g, p.g));
+    hf = hydrostatic_face(m, p);
   }
+  const FaceFlux r = hf.r;
+  const real zm = hf.zm, zp = hf.zp, bs = hf.bs, hm = hf.hm, hp = hf.hp;
   f.fh = wall ? (real)0 : r.fh;
   f.fqn = r.fqn;
   f.fqt = wall ? (real)0 : r.fqt;
