@@ -25,9 +25,7 @@ import argparse
 import json
 import math
 import os
-import shutil
 import subprocess
-import sys
 import tempfile
 
 import numpy as np
@@ -416,7 +414,6 @@ def cmd_grids(args):
     print(f"derived 5 m water vs water.tif: max |diff| = {diff:.3g} m, cells {np.count_nonzero(h5.values > 0)}"
           f" vs {np.count_nonzero(water5.values > 0)}")
     levels = [float(v) for v in args.levels.split(",")]
-    base_dx = dem5.dx
     zmax = np.nanmax(dem5.values)
     wall = float(math.ceil((zmax + 500.0) / 100.0) * 100.0)
     info = {}
@@ -479,29 +476,19 @@ def ritter_cell_averages(nx, dx, sub=64):
     return ritter_h(x).mean(axis=1)
 
 
-RITTER_RUN = """[Talus run file]
-# Ritter dam break (bench/peers): flat frictionless channel, walls on every side
-[Input]
-Map Directory=.
-DEM=dem.tif
-Include Initial Water=1
-Initial Fluid Height=water.tif
-[Flow]
-Manning=0
-Slope Correction=0
-[Time]
-Start Time=0
-End Time={tend_min!r}
-Timestep={t!r}
-[Numerics]
-CFL=0.5
-Limiter=vanleer
-Riemann Solver=hllc
-Precision=float
-Boundary Type=wall
-[Output]
-Output Directory=output
-"""
+def talus_run_text(manning, t_end_s, precision, boundary, comment=None):
+    """A Talus run-file for the peer cases: DEM and initial water from dem.tif / water.tif beside it,
+    slope correction off (GeoClaw's equations), van Leer + HLLC at CFL 0.5, outputs in output/."""
+    lines = ["[Talus run file]"]
+    if comment:
+        lines.append("# " + comment)
+    lines += ["[Input]", "Map Directory=.", "DEM=dem.tif", "Include Initial Water=1", "Initial Fluid Height=water.tif",
+              "[Flow]", "Manning=%r" % (manning,), "Slope Correction=0",
+              "[Time]", "Start Time=0", "End Time=%r" % (t_end_s / 60.0,), "Timestep=%r" % (t_end_s,),
+              "[Numerics]", "CFL=0.5", "Limiter=vanleer", "Riemann Solver=hllc", "Precision=" + precision,
+              "Boundary Type=" + boundary, "[Output]", "Output Directory=output"]
+    return "\n".join(lines) + "\n"
+
 
 
 def cmd_ritter(args):
@@ -519,7 +506,8 @@ def cmd_ritter(args):
         write_raster(os.path.join(rdir, "dem.tif"), Raster(z, 0.0, ny * dx, dx))
         write_raster(os.path.join(rdir, "water.tif"), Raster(h, 0.0, ny * dx, dx))
         with open(os.path.join(rdir, "talus.run"), "w") as fo:
-            fo.write(RITTER_RUN.format(tend_min=RITTER_T / 60.0, t=RITTER_T))
+            fo.write(talus_run_text(0, RITTER_T, "float", "wall",
+                                    "Ritter dam break (bench/peers): flat frictionless channel, walls on every side"))
         for suffix, tol in (("", 1e-6), (DRY3, 1e-3)):
             geoclaw_case(os.path.join(work, "geoclaw", "ritter_" + name + suffix), z, h, dx, tfinal=RITTER_T,
                          nout=1, bc="wall", manning=0.0, wall_height=10.0, out_format="ascii", fgmax=False,

@@ -27,29 +27,6 @@ sys.path.insert(0, HERE)
 import geoclaw_cases as gc  # noqa: E402
 import peers_io  # noqa: E402
 
-RUN = """[Talus run file]
-[Input]
-Map Directory=.
-DEM=dem.tif
-Include Initial Water=1
-Initial Fluid Height=water.tif
-[Flow]
-Manning={n!r}
-Slope Correction=0
-[Time]
-Start Time=0
-End Time={tend_min!r}
-Timestep={t!r}
-[Numerics]
-CFL=0.5
-Limiter=vanleer
-Riemann Solver=hllc
-Precision=double
-Boundary Type=open
-[Output]
-Output Directory=output
-"""
-
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -86,7 +63,7 @@ def main():
         gc.write_raster(os.path.join(d, "dem.tif"), gc.Raster(z, 0.0, ny * dx, dx))
         gc.write_raster(os.path.join(d, "water.tif"), gc.Raster(h, 0.0, ny * dx, dx))
         with open(os.path.join(d, "talus.run"), "w") as f:
-            f.write(RUN.format(n=a.n, tend_min=a.t / 60.0, t=a.t))
+            f.write(gc.talus_run_text(a.n, a.t, "double", "open"))
         # Talus: walls on the sides are not separately selectable from the open ends, so the
         # 4-cell strip has open sides too; the flow is along x, so nothing leaves sideways.
         out = os.path.join(d, "talus_out")
