@@ -187,10 +187,7 @@ void MainWindow::refreshProbes(bool rereadSeries) {
       // appends its next snapshots below).
       std::vector<QPointF> points;
       if (results_ && results_->frameCount() > 0) {
-        for (int f = 0; f < results_->frameCount(); ++f) {
-          const auto s = results_->snapshot(f);
-          points.emplace_back(results_->frameTime(f), layerValue(s.get(), name, k));
-        }
+        points = results_->cellSeries(name, k);
       } else if (shown) {
         points.emplace_back(shown->time, layerValue(shown.get(), name, k));
       }

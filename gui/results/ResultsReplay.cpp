@@ -153,6 +153,28 @@ std::shared_ptr<const sim::ViewSnapshot> ResultsReplay::snapshot(int frame) {
   return s;
 }
 
+std::vector<QPointF> ResultsReplay::cellSeries(const std::string& layer, std::size_t k) {
+  const auto map = std::find(mapNames_.begin(), mapNames_.end(), layer);
+  const ResultsSeries* series = nullptr;
+  for (const ResultsSeries& s : folder_.series)
+    if (s.name.toStdString() == layer) series = &s;
+  std::vector<QPointF> out;
+  for (int f = 0; f < frameCount(); ++f) {
+    double v = NAN;
+    if (map != mapNames_.end()) {
+      v = mapValues_[static_cast<std::size_t>(map - mapNames_.begin())][k];
+    } else if (series) {
+      std::vector<float> values;
+      const QString& file = series->files[static_cast<std::size_t>(f)];
+      if (!file.isEmpty() && readLayer(file, values)) v = values[k];
+    } else if (const std::vector<float>* l = snapshot(f)->layer(layer)) {
+      v = (*l)[k];
+    }
+    out.emplace_back(frameTime(f), v);
+  }
+  return out;
+}
+
 void ResultsReplay::compareWith(std::unique_ptr<ResultsReplay> other) {
   if (!sameGrid(other->grid_, grid_))
     throw std::runtime_error(("the results in '" + other->folder_.dir + "' are on another grid than those in '" +

@@ -4,6 +4,7 @@
 // the folder (maxima, final, arrival, ...) and the series variables and particles at that frame, so
 // the viewer and the layer panel show it as they show a live run's snapshot.
 #pragma once
+#include <QPointF>
 #include <QStringList>
 #include <memory>
 #include <vector>
@@ -33,6 +34,10 @@ class ResultsReplay {
   /// The snapshot of frame `frame` (clamped into range; without frames: the folder's maps and final
   /// particles). Reads the frame's files.
   std::shared_ptr<const sim::ViewSnapshot> snapshot(int frame);
+  /// The values of a layer at cell k over every series frame, (frame time, value): a map of the
+  /// folder is constant, a series variable reads only its own file per frame, any other layer (a
+  /// difference) the frame's snapshot. NaN where a frame has no value.
+  std::vector<QPointF> cellSeries(const std::string& layer, std::size_t k);
   /// Compares with another opened folder from now on: the difference layers of the maps and series
   /// both hold join the catalogue (ResultsComparison). Throws std::runtime_error naming both
   /// folders when their grids differ.

@@ -139,9 +139,8 @@ void ViewerWidget::resizeGL(int w, int h) {
 }
 
 QVector3D ViewerWidget::worldOrigin() const {
-  const auto& gt = grid_.geoTransform;
-  return QVector3D(float(gt[0] + gt[1] * grid_.nx / 2.0), float(gt[3] + gt[5] * grid_.ny / 2.0),
-                   terrain_ ? terrain_->elevationMid() : 0.0f);
+  const QPointF centre = worldOf(QPointF(0, 0));
+  return QVector3D(float(centre.x()), float(centre.y()), terrain_ ? terrain_->elevationMid() : 0.0f);
 }
 
 float ViewerWidget::exaggeration() const {
@@ -233,15 +232,12 @@ QPointF ViewerWidget::pixelOfCell(int i, int j) const {
 }
 
 QPointF ViewerWidget::worldOf(QPointF model) const {
-  // As worldOrigin, in double: the sketch needs the georeference in full.
+  // The model origin is the grid's centre (in double: the sketch needs the georeference in full).
   const auto& gt = grid_.geoTransform;
   return {gt[0] + gt[1] * grid_.nx / 2.0 + model.x(), gt[3] + gt[5] * grid_.ny / 2.0 + model.y()};
 }
 
-QPointF ViewerWidget::modelOf(QPointF world) const {
-  const auto& gt = grid_.geoTransform;
-  return {world.x() - (gt[0] + gt[1] * grid_.nx / 2.0), world.y() - (gt[3] + gt[5] * grid_.ny / 2.0)};
-}
+QPointF ViewerWidget::modelOf(QPointF world) const { return world - worldOf(QPointF(0, 0)); }
 
 void ViewerWidget::mousePressEvent(QMouseEvent* e) {
   lastMouse_ = e->pos();

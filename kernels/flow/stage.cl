@@ -107,8 +107,9 @@ void flow_stage(__constant const FlowParams* p, __global const uchar* mask, __gl
     const CellFaces own = local_faces(lh, le, lu, lv, lin, la, lb, dir);
     CellFaces nb = own;
     if (m_in) nb = local_faces(lh, le, lu, lv, lin, la - da, lb - db, dir);
-    // At a level edge the outside is still water at the cell's far level (its initial surface).
-    const real far = far_level[k];
+    // At a level edge the outside is still water at the cell's far level (its initial surface); only
+    // cells beside an outside cell read it.
+    const real far = (m_in && p_in) ? (real)0 : far_level[k];
     const Face fm = face_between(m_in, side_hi(nb, lg[sm]), 1, side_lo(own, g), boundary_kind(p, i - da, j - db), far);
     nb = own;
     if (p_in) nb = local_faces(lh, le, lu, lv, lin, la + da, lb + db, dir);
