@@ -145,6 +145,22 @@ inline real basal_factor(__constant const DebrisParams* dp, BasalColumn c, real 
   }
 }
 
+/// The bed stress a column at rest can hold, horizontal, per unit area and solid density [m^2/s^2]:
+/// the largest q* / ds that the cell's law still holds (basal_factor returns 0), i.e. each law's
+/// yield threshold at zero speed: Coulomb tan(delta) n_g h, Voellmy mu n_g h, mu(I) mu_stop(H) n_g h
+/// (the Fr < beta branch), Herschel-Bulkley tau_y / (rho cos(theta) s).
+inline real basal_strength(__constant const DebrisParams* dp, BasalColumn c) {
+  switch (BASAL_LAW(dp)) {
+    case RHEOLOGY_VOELLMY: return dp->rheo[0] * c.n_g * c.h_st;
+    case RHEOLOGY_MU_I: {
+      const real mu_stop = dp->rheo[0] + (dp->rheo[1] - dp->rheo[0]) / ((real)1 + c.h * c.cos_t / dp->rheo[3]);
+      return mu_stop * c.n_g * c.h_st;
+    }
+    case RHEOLOGY_HERSCHEL_BULKLEY: return dp->rheo[0] / (c.rho * c.cos_t * c.stretch);
+    default: return c.tan_delta * c.n_g * c.h_st;
+  }
+}
+
 /// s = sqrt(1 + (e.grad b)^2) of motion along (rx, ry) over the bed gradient (bx, by); 1 with the
 /// horizontal form of the slope terms (MANNING_ALONG_BED=0, slope correction off).
 inline real along_bed_stretch(real rx, real ry, real bx, real by) {

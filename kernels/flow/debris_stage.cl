@@ -155,8 +155,25 @@ inline Material material_of(__constant const FlowParams* p, __constant const Deb
 /// A solid side of solid_bed.cl with the lateral pressure Pi [m^2/s^2] (per unit solid density and
 /// thickness) of coefficient K: Pi = max(0, a H - c0), a = K (1 - gamma) g_p / 2, c0 = 2 c sqrt(K) / rho_s.
 inline SolidSide solid_side(real h, real z, real un, real ut, real hf, real K, Material m, real g, real geff) {
-  const SolidSide s = {h, z, un, ut, (real)0.5 * K * ((real)1 - m.gamma) * g, (real)2 * m.c_over_rho * sqrt(K), hf, geff};
+  const SolidSide s = {h, z, un, ut, (real)0.5 * K * ((real)1 - m.gamma) * g, (real)2 * m.c_over_rho * sqrt(K), hf, geff, 0};
   return s;
+}
+
+/// The push a static column (thickness hs, material m, g_n of its cell) holds through one face beyond
+/// its own pressure (solid_bed.cl, point 6): half its basal strength at rest over the cell's area, per
+/// unit width [m^3/s^2].
+inline real static_hold(__constant const FlowParams* p, __constant const DebrisParams* dp, real hs, Material m, real gn) {
+  if (!(hs > p->h_dry)) return (real)0;
+  BasalColumn c;
+  c.h_st = hs;
+  c.h = hs;
+  c.g_n = gn;
+  c.n_g = ((real)1 - dp->pore_b * m.gamma) * gn;
+  c.cos_t = sqrt(gn / (real)GRAVITY);
+  c.stretch = 1;
+  c.rho = m.rho_s;
+  c.tan_delta = tan(m.delta);
+  return (real)0.5 * basal_strength(dp, c) * p->dx;
 }
 
 /// The turn onto cell k's tangent plane of solids arriving from cell o (solid_bed.cl, point 1): their
@@ -285,14 +302,20 @@ __kernel void debris_stage(__constant const FlowParams* p, __constant const Debr
       Kc = earth_pressure(mc.phi, mc.delta, passive_share(own.hi.us - own.lo.us, p->dx, gnk, c0.hs + c0.hf));
       Kp = earth_pressure(mp.phi, mp.delta, passive_share(fp_cell.hi.us - fp_cell.lo.us, p->dx, gn[kp], cp.hs + cp.hf));
     }
-    const SolidSide smL = solid_side(fm_cell.hi.hs, fm_cell.hi.zb, fm_cell.hi.us, fm_cell.hi.vs, fm_cell.hi.hf, Km, mm,
+    SolidSide smL = solid_side(fm_cell.hi.hs, fm_cell.hi.zb, fm_cell.hi.us, fm_cell.hi.vs, fm_cell.hi.hf, Km, mm,
                                      gm, gn[km]);
-    const SolidSide smR = solid_side(own.lo.hs, own.lo.zb, own.lo.us, own.lo.vs, own.lo.hf, Kc, mc, g, gnk);
-    const SolidSide spL = solid_side(own.hi.hs, own.hi.zb, own.hi.us, own.hi.vs, own.hi.hf, Kc, mc, g, gnk);
-    const SolidSide spR = solid_side(fp_cell.lo.hs, fp_cell.lo.zb, fp_cell.lo.us, fp_cell.lo.vs, fp_cell.lo.hf, Kp, mp,
+    SolidSide smR = solid_side(own.lo.hs, own.lo.zb, own.lo.us, own.lo.vs, own.lo.hf, Kc, mc, g, gnk);
+    SolidSide spL = solid_side(own.hi.hs, own.hi.zb, own.hi.us, own.hi.vs, own.hi.hf, Kc, mc, g, gnk);
+    SolidSide spR = solid_side(fp_cell.lo.hs, fp_cell.lo.zb, fp_cell.lo.us, fp_cell.lo.vs, fp_cell.lo.hf, Kp, mp,
                                      gpp, gn[kp]);
     const int lk = lock_st[k];
     const int lock_m = lk && (!m_in || lock_st[km]), lock_p = lk && (!p_in || lock_st[kp]);
+    if (lk) {
+      const real hold_c = static_hold(p, dp, c0.hs, mc, gnk);
+      smR.hold = spL.hold = hold_c;
+      if (lock_m) smL.hold = m_in ? static_hold(p, dp, cm.hs, mm, gn[km]) : hold_c;
+      if (lock_p) spR.hold = p_in ? static_hold(p, dp, cp.hs, mp, gn[kp]) : hold_c;
+    }
     const SolidFace Sm = solid_face(m_in, smL, 1, smR, kind_m, lock_m);
     const SolidFace Sp = solid_face(1, spL, p_in, spR, kind_p, lock_p);
     beta_lo[dir] = Sm.beta_p;

@@ -60,6 +60,27 @@
 //    friction without the convex halves' relief, a friction that grew with u^2 times the DEM's noise
 //    (test_terrain_roughness.cpp). The kinematics stay on the bed (the depth-averaged
 //    model has no flight path): only the friction's normal stress knows the flight.
+// 6. Static contacts. Between two cells whose solids are at rest (or empty) no mass crosses, and the
+//    force the columns exert on each other is statically indeterminate: any value that both
+//    columns' basal strength can hold keeps them at rest. The HLL pressure of the two face states is
+//    the flowing value; at rest the face transmits it only as far as each side can push back: the
+//    pressure of its whole face column, p(h) (p(h*) on the face and, where the face bed rises, p(h) -
+//    p(h*) on the step, point 3), plus `hold`, the share of its basal strength one face may use:
+//      P = min(P_HLL, p_m(h_m) + hold_m, p_p(h_p) + hold_p),
+//    hold = half the law's strength at rest over the cell's area, per unit width (basal_strength,
+//    basal_rheology.cl). Half, because a column's strength is shared by its contacts: with each face
+//    bounded by half, the two faces that can push a column the same way (one per axis; opposite
+//    faces of an axis push against each other) load it with at most 1/sqrt(2) of its strength,
+//    and the rest is left for its own loads, its bed slope and the imbalance of its own pressure.
+//    So a film or a thin layer beside a pile at rest is pushed at most with part of its own
+//    friction (the HLL share of the pile's pressure drove a 0.1 mm film beside a 0.5 m pile to
+//    180 m/s in one step, data/kot_debrisflow), the pile carries the rest with its own friction or
+//    starts to move, and between static columns whose HLL pressure both can hold nothing changes
+//    (the submerged mixture at rest keeps its exact balance). It is a local form of the contact
+//    problem over the static region, not its implicit solution: a column whose own loads already
+//    take more than half its strength can be pushed past it and start to move. It replaces a rule
+//    that switched to min(p_m, p_p) below a thickness ratio of 1/10 (test_solid_steps.cpp,
+//    `SolidSteps.GranularStepBelowReposeStaysAtRest`).
 #ifndef TALUS_FLOW_SOLID_BED_CL
 #define TALUS_FLOW_SOLID_BED_CL
 #include "flow/riemann.cl"
@@ -75,11 +96,13 @@ inline real bed_rise(real bm, int m_in, real bc, real bp, int p_in) {
 
 /// One side of a solid face: face thickness h, face bed z, normal and tangential
 /// velocity, the lateral pressure Pi(h') = max(0, a (h' + hf) - c0) for any thickness h' of the side,
-/// and g_eff = g_n of its cell (for the drop force and the run-up height).
+/// g_eff = g_n of its cell (for the drop force and the run-up height), and, where the face is a
+/// static contact, the push its column can hold beyond its own pressure (point 6) [m^3/s^2].
 typedef struct {
   real h, z, un, ut;
   real a, c0, hf;
   real geff;
+  real hold;
 } SolidSide;
 
 inline real side_pi(SolidSide s, real h) { return fmax((real)0, s.a * (h + s.hf) - s.c0); }
@@ -115,8 +138,7 @@ typedef struct {
 
 /// The solid face between side m (minus) and side p (plus); conventions of face_between
 /// (riemann.cl) for outside sides (ghosts). `locked`: both cells static or empty, so no mass crosses
-/// and the sides touch at rest: the face pressure is that of the thinner contact, min(p_m, p_p)
-/// (a column pushes its neighbour only where the neighbour's column is there to push back).
+/// and the sides touch at rest (point 6).
 inline SolidFace solid_face(int m_in, SolidSide m, int p_in, SolidSide p, int kind, int locked) {
   SolidFace f = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
   if (!m_in && !p_in) return f;
@@ -142,17 +164,8 @@ inline SolidFace solid_face(int m_in, SolidSide m, int p_in, SolidSide p, int ki
     f.fh = closed ? (real)0 : r.fh;
     f.fqn = r.fqn;
     f.fqt = closed ? (real)0 : r.fqt;
-    // Between two static cells of very different face thickness (one side below a tenth of the
-    // other) the face carries the smaller side's pressure: material at rest pushes a thin layer
-    // beside it only as hard as that layer pushes back. The HLL average would load the layer with a
-    // share of the thick side's pressure, which its tiny mass turns into absurd speeds (found: a
-    // 0.1 mm film at 180 m/s beside a 0.5 m pile at rest, data/kot_debrisflow at t = 112 s). This
-    // rule remains: the force between two static columns is statically indeterminate, and the
-    // principled replacement is an implicit contact solve over the static cells (not done yet; the
-    // contact-height pressure min(h*_m, h*_p) breaks the submerged mixture at rest, whose lateral
-    // pressure grows with the mixture thickness, not with the solid column alone).
-    const int contrast = fmin(hm, hp) < (real)0.1 * fmax(hm, hp);
-    f.p = (locked && contrast) ? fmin(hm * pim, hp * pip) : r.p;
+    // A static contact transmits no more than either column can hold (point 6).
+    f.p = locked ? fmin(r.p, fmin(side_pressure(m, m.h) + m.hold, side_pressure(p, p.h) + p.hold)) : r.p;
   }
   // Bed jumps of each side (point 3): a drop is the fall, a rise takes the material's pressure.
   if (zs >= zm) {

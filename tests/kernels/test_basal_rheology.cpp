@@ -63,8 +63,9 @@ class BasalRheologyTest : public ::testing::TestWithParam<Precision> {
     return p;
   }
 
-  /// q / q* of every case on the device.
-  std::vector<double> runDevice(Rheology law, const std::array<double, 4>& rheo, const std::vector<Case>& cases) const {
+  /// q / q* of every case on the device (or, with `entry` basal_strength_test, each column's strength at rest).
+  std::vector<double> runDevice(Rheology law, const std::array<double, 4>& rheo, const std::vector<Case>& cases,
+                                const char* entry = "basal_rheology_test") const {
     flow::DebrisSettings d;
     d.rheology = law;
     d.rheologyParams = rheo;
@@ -77,7 +78,7 @@ class BasalRheologyTest : public ::testing::TestWithParam<Precision> {
     }
     compute::RealBuffer inBuf(ctx(), in.size(), "basal in"), outBuf(ctx(), cases.size(), "basal out");
     inBuf.upload(in);
-    compute::Kernel k(ctx().program("flow/basal_rheology_test.cl"), "basal_rheology_test");
+    compute::Kernel k(ctx().program("flow/basal_rheology_test.cl"), entry);
     k.bind(params, inBuf, outBuf, static_cast<int>(cases.size()));
     k.launch(compute::Range{cases.size()});
     return outBuf.download();
@@ -196,6 +197,50 @@ TEST_P(BasalRheologyTest, HeldColumnsAreExactlyAtRest) {
   EXPECT_EQ(runDevice(Rheology::MuI, rounded(std::array<double, 4>{0.5, 0.8, 0.136, 0.1}), cases)[0], 0.0);
   // Herschel-Bulkley: q* = 0.5 coulomb ~ 0.0294 m^2/s <= ds tau_y / rho = 0.05.
   EXPECT_EQ(runDevice(Rheology::HerschelBulkley, {10000.0, 10.0, 1.0, 0}, cases)[0], 0.0);
+}
+
+// The strength at rest (basal_strength) that the static contact of debris_stage bounds a face's
+// push with (solid_bed.cl, point 6) is each law's yield threshold: it equals the independent
+// formula (Coulomb tan(delta) n_g h, Voellmy mu n_g h, mu(I) mu_stop(H) n_g h with mu_stop of
+// Pouliquen & Forterre 2002, Herschel-Bulkley tau_y / (rho cos(theta) s)) to round-off, and the law
+// holds a column pushed with ds times it less one part in 1e6 (1e-4 in float, whose q* rounds at
+// 6e-8) and moves one pushed with one part more (5 parts in 100 for Herschel-Bulkley, whose speed
+// starts as (tau - tau_y)^(1 + 1/n): just above the yield its q is below the round-off of q* - m tau).
+TEST_P(BasalRheologyTest, StrengthAtRestIsEachLawsYieldThreshold) {
+  const double rel = isDouble() ? 1e-6 : 1e-4;
+  struct Law {
+    Rheology law;
+    std::array<double, 4> rheo;
+    double (*formula)(const BasalColumnRef&, const std::array<double, 4>&);
+  };
+  const Law laws[] = {
+      {Rheology::Coulomb, {0, 0, 0, 0}, [](const BasalColumnRef& c, const std::array<double, 4>&) { return c.tanDelta * c.nG * c.hSt; }},
+      {Rheology::Voellmy, {0.35, kGravity / 2000.0, 0, 0},
+       [](const BasalColumnRef& c, const std::array<double, 4>& p) { return p[0] * c.nG * c.hSt; }},
+      {Rheology::MuI, {0.38, 0.64, 0.136, 0.00065},
+       [](const BasalColumnRef& c, const std::array<double, 4>& p) {
+         return (p[0] + (p[1] - p[0]) / (1.0 + c.h * c.cosT / p[3])) * c.nG * c.hSt;
+       }},
+      {Rheology::HerschelBulkley, {800.0, 40.0, 0.5, 0},
+       [](const BasalColumnRef& c, const std::array<double, 4>& p) { return p[0] / (c.rho * c.cosT * c.stretch); }},
+  };
+  for (const Law& l : laws) {
+    const std::array<double, 4> rheo = rounded(l.rheo);
+    std::vector<Case> cases = randomCases(41u, 300, coulombThreshold, rheo);
+    const std::vector<double> strength = runDevice(l.law, rheo, cases, "basal_strength_test");
+    std::vector<Case> below = cases, above = cases;
+    for (std::size_t i = 0; i < cases.size(); ++i) {
+      const double ref = l.formula(cases[i].c, rheo);
+      EXPECT_NEAR(strength[i], ref, (isDouble() ? 1e-13 : 1e-6) * ref) << "law " << static_cast<int>(l.law) << " case " << i;
+      below[i].qStar = dev(cases[i].ds * strength[i] * (1.0 - rel));
+      above[i].qStar = dev(cases[i].ds * strength[i] * (1.0 + (l.law == Rheology::HerschelBulkley ? 5e-2 : rel)));
+    }
+    const std::vector<double> held = runDevice(l.law, rheo, below), moving = runDevice(l.law, rheo, above);
+    for (std::size_t i = 0; i < cases.size(); ++i) {
+      EXPECT_EQ(held[i], 0.0) << "law " << static_cast<int>(l.law) << " case " << i << ": pushed just below its strength";
+      EXPECT_GT(moving[i], 0.0) << "law " << static_cast<int>(l.law) << " case " << i << ": pushed just above its strength";
+    }
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Precisions, BasalRheologyTest, ::testing::Values(Precision::Double, Precision::Float),
