@@ -219,7 +219,8 @@ inline real column_kinetic(__constant const DebrisParams* dp, real hs, const rea
 
 __kernel void debris_stage(__constant const FlowParams* p, __constant const DebrisParams* dp,
                            __global const uchar* mask, __global const int* tile_list, __global const real* b,
-                           __global const real* gp, __global const real* gn, __global const real* manning,
+                           __global const real* gp, __global const real* gn, __global const real* far_level,
+                           __global const real* manning,
                            __global const real* fslope,
                            __global const real* delta,
                            __global const real* pbed, __global real* impulse,
@@ -284,10 +285,12 @@ __kernel void debris_stage(__constant const FlowParams* p, __constant const Debr
     const Side fmR = {own.lo.hf, own.lo.ef, own.lo.uf, own.lo.vf, g};
     const Side fpL = {own.hi.hf, own.hi.ef, own.hi.uf, own.hi.vf, g};
     const Side fpR = {fp_cell.lo.hf, fp_cell.lo.ef, fp_cell.lo.uf, fp_cell.lo.vf, gpp};
-    // Open edges: the zero-gradient ghost (far = NAN: two-phase runs refuse level edges, whose
-    // characteristic ghost the water solver has; docs/numerics.md).
-    const Face Fm = face_between(m_in, fmL, 1, fmR, kind_m, NAN);
-    const Face Fp = face_between(1, fpL, p_in, fpR, kind_p, NAN);
+    // Level edges: the fluid's characteristic ghost against still water at the cell's initial
+    // surface (riemann.cl, open_ghost; the solids see an open edge there). Only cells beside an
+    // outside cell read it.
+    const real far = (m_in && p_in) ? (real)0 : far_level[k];
+    const Face Fm = face_between(m_in, fmL, 1, fmR, kind_m, far);
+    const Face Fp = face_between(1, fpL, p_in, fpR, kind_p, far);
 
     // Solid faces: each side's lateral pressure with its cell's K (active where its solids extend
     // along dir, passive where they contract), from its face thickness of the mixture, and the

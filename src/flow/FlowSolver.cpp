@@ -81,8 +81,6 @@ FlowSolver::FlowSolver(compute::Context& ctx, const Grid& grid, const FlowSettin
   if (settings.particleBed && !settings.twoPhase) throw InputError("the particle bed needs the two-phase grid model");
   if (settings.twoPhase && settings.scheme == TimeScheme::Split)
     throw InputError("the dimensionally split time scheme is for water only (the two-phase model runs unsplit)");
-  if (settings.twoPhase && (settings.edge == Boundary::Level || settings.nodata == Boundary::Level))
-    throw InputError("level boundaries are for water only (the two-phase model has open and wall boundaries)");
   const std::string opts = buildOptions(settings);
   stage_ = compute::Kernel(ctx.program("flow/stage.cl", opts), "flow_stage");
   friction_ = compute::Kernel(ctx.program("flow/friction.cl", opts), "flow_friction");
@@ -135,8 +133,11 @@ void FlowSolver::setInput(const FlowInput& in, double startTime) {
     if (in.mask[k]) maxSlopeSpeed_ = std::max(maxSlopeSpeed_, sg.slopeSpeed[k]);
   h_.upload(h);
   {
+    // The level outside a level edge: the initial water surface, over the solids in the two-phase
+    // model (its fluid's bed is b + h_s).
     std::vector<double> far(n);
-    for (std::size_t k = 0; k < n; ++k) far[k] = bed[k] + h[k];
+    const bool solids = settings_.twoPhase && in.hs.size() == n;
+    for (std::size_t k = 0; k < n; ++k) far[k] = bed[k] + h[k] + (solids && in.mask[k] ? in.hs[k] : 0.0);
     farLevel_.upload(far);
   }
   // Momentum of dry and outside cells is discarded, as the update does after every stage.

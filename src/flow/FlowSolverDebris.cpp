@@ -109,7 +109,7 @@ void FlowSolver::enqueueDebrisStage(bool first, double dt) {
   compute::RealBuffer &hout = first ? h1_ : h_, &qxout = first ? qx1_ : qx_, &qyout = first ? qy1_ : qy_;
   compute::Buffer<uint8_t>&lst = first ? lock0_ : lock1_, &lout = first ? lock1_ : lock0_;
   if (first && settings_.particleBed) bedImpulse_.fill(0.0);  // the impulse of this step only
-  debrisStage_.bind(params_, debrisParams_, mask_, tileList_, bed_, gp_, gn_, manning_, bedSlope_, delta_,
+  debrisStage_.bind(params_, debrisParams_, mask_, tileList_, bed_, gp_, gn_, farLevel_, manning_, bedSlope_, delta_,
                     particleBed_, bedImpulse_, solid0_, h_,
                     qx_, qy_, Sst, hst, qxst, qyst, lst, Sout, hout, qxout, qyout, lout, outStep_,
                     compute::RealArg{dt}, compute::RealArg{first ? 0.0 : 0.5}, compute::RealArg{0.5 * dt},

@@ -303,10 +303,6 @@ Scene loadScene(const io::RunConfig& cfg) {
   if (f.twoPhase && f.scheme == flow::TimeScheme::Split)
     throw InputError(cfg.origin("Time Scheme") + ": key 'Time Scheme': 'split' is for water-only runs; this run "
                      "has solids (the two-phase model runs unsplit)");
-  for (const char* key : {"Boundary Type", "Nodata Boundary Type"})
-    if (f.twoPhase && flow::parseBoundary(cfg.choice(key)) == flow::Boundary::Level)
-      throw InputError(cfg.origin(key) + ": key '" + key + "': 'level' is for water-only runs; this run has solids "
-                       "(use open or wall)");
   if (s.particles.enabled) {
     particles::ParticleSettings& ps = s.particles.settings;
     setElasticity(cfg, ps);

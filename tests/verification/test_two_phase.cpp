@@ -6,9 +6,11 @@
 //    support/DebrisScene.hpp), linear and quadratic, with and without virtual mass, conserving
 //    rho_s q_s + rho_f q_f to round-off; with the drag off the phases keep their velocities;
 //  - TwoPhase.QuadraticDragIsIsotropic: the quadratic law acts on |u_f - u_s| of the vector;
-//  - TwoPhase.VolumeConservedWithWalls: the volume of each phase over a rough bed, closed and open;
+//  - TwoPhase.VolumeConservedWithWalls: the volume of each phase over a rough bed, closed, open and
+//    level edges;
 //  - TwoPhase.SymmetricReleaseStaysSymmetric: x <-> y and mirror symmetry;
-//  - TwoPhase.MixtureAtRestStaysAtRest: a lake over a submerged solid layer held by friction.
+//  - TwoPhase.MixtureAtRestStaysAtRest: a lake over a submerged solid layer held by friction, between
+//    walls and against level edges.
 // Double precision throughout.
 #include <gtest/gtest.h>
 
@@ -320,8 +322,8 @@ fl::FlowInput randomScene(const Grid& g, unsigned seed) {
 
 TEST(TwoPhase, VolumeConservedWithWalls) {
   const Grid g = Grid::make(48, 48, 1.0);
-  for (const fl::Boundary edge : {fl::Boundary::Wall, fl::Boundary::Open}) {
-    const bool open = edge == fl::Boundary::Open;
+  for (const fl::Boundary edge : {fl::Boundary::Wall, fl::Boundary::Open, fl::Boundary::Level}) {
+    const bool open = edge != fl::Boundary::Wall;
     const fl::FlowSettings s = twoPhaseSettings(edge);
     fl::FlowSolver solver(talus::test::testContext(Precision::Double), g, s);
     solver.setInput(randomScene(g, 7u));
@@ -342,7 +344,7 @@ TEST(TwoPhase, VolumeConservedWithWalls) {
     const double hostF = std::fabs(st.volumeFluid(g.dx) + outF - vf0) / vf0;
     std::printf("[ volume, %s edges ] %d steps, t %.2f s: solids %.4f m^3 (out %.4f), fluid %.4f m^3 (out %.4f); "
                 "max relative error solids %.2e, fluid %.2e (host sums %.1e, %.1e), min thickness %.1e\n",
-                open ? "open" : "wall", steps, solver.time(), vs0, outS, vf0, outF, errS, errF, hostS, hostF, minH);
+                open ? (edge == fl::Boundary::Level ? "level" : "open") : "wall", steps, solver.time(), vs0, outS, vf0, outF, errS, errF, hostS, hostF, minH);
     EXPECT_EQ(steps, 300);
     EXPECT_LE(errS, 1e-12);
     EXPECT_LE(errF, 1e-12);
@@ -350,8 +352,8 @@ TEST(TwoPhase, VolumeConservedWithWalls) {
     EXPECT_LE(hostF, 1e-12);
     EXPECT_GE(minH, 0.0);
     if (open) {
-      EXPECT_GT(outS, 0.0) << "solids should leave through the open edges";
-      EXPECT_GT(outF, 0.0) << "fluid should leave through the open edges";
+      EXPECT_GT(outS, 0.0) << "solids should leave through the open and level edges";
+      EXPECT_GT(outF, 0.0) << "fluid should leave through the open and level edges";
     } else {
       EXPECT_EQ(outS, 0.0);
       EXPECT_EQ(outF, 0.0);
@@ -479,7 +481,10 @@ TEST(TwoPhase, SymmetricReleaseStaysSymmetric) {
 // +-1.2 m over 80 m, per-cell noise +-0.05 m: slopes up to ~0.15), a solid layer 0.20-0.21 m thick
 // everywhere (phi = delta = 35 deg, rho_s 2500), and fluid up to a flat mixture surface
 // eta = b + h_s + h_f: (a) 0.5 m above the highest solid surface (all submerged), (b) at 0.3 m, with
-// dry islands where solids lie on land (gamma = 0 there). Walls, 300 CFL steps (20-30 s).
+// dry islands where solids lie on land (gamma = 0 there). Walls, 300 CFL steps (20-30 s); and the
+// same against level edges (the fluid's characteristic ghost against still water at its initial
+// surface over the solids, b + h_s + h_f: a ghost level taken without the solids would drain the
+// lake through the edges).
 // The fluid sees the bed b + h_s and is a lake at rest over it (hydrostatic reconstruction, exact
 // to round-off); the solids feel lateral pressure, buoyancy and the bed slope, whose imbalance over
 // this bed is far below the Coulomb friction tan(35 deg) (1 - gamma) g_n h_s, so friction holds
@@ -492,9 +497,10 @@ TEST(TwoPhase, SymmetricReleaseStaysSymmetric) {
 // (Drag applied before friction handed part of it to the fluid: 0.9-1.7e-2 m/s after 300 steps.)
 TEST(TwoPhase, MixtureAtRestStaysAtRest) {
   const Grid g = Grid::make(40, 40, 2.0);
+  for (const fl::Boundary edge : {fl::Boundary::Wall, fl::Boundary::Level})
   for (const fl::DragLaw drag : {fl::DragLaw::Off, fl::DragLaw::Linear})
     for (const bool shore : {false, true}) {
-      fl::FlowSettings s = twoPhaseSettings(fl::Boundary::Wall);
+      fl::FlowSettings s = twoPhaseSettings(edge);
       s.debris.drag = drag;
       talus::test::SolidMaterial mat;
       mat.phi = mat.delta = 35.0 * kDeg;
@@ -526,7 +532,8 @@ TEST(TwoPhase, MixtureAtRestStaysAtRest) {
         solidsChanged += st.hs[k] != in.hs[k];
         solidsMoving += st.qsx[k] != 0.0 || st.qsy[k] != 0.0;
       }
-      const std::string name = std::string(drag == fl::DragLaw::Off ? "drag off" : "linear drag") +
+      const std::string name = std::string(edge == fl::Boundary::Wall ? "walls, " : "level edges, ") +
+                               (drag == fl::DragLaw::Off ? "drag off" : "linear drag") +
                                (shore ? ", shoreline" : ", submerged");
       std::printf("[ mixture at rest, %s ] %d dry cells, %d steps (t %.1f s): fluid speed %.2e m/s, surface %.2e m, "
                   "solid cells changed %d, moving %d\n",
