@@ -77,18 +77,29 @@ CpuFlowReference::Prim CpuFlowReference::prim(const State& s, int i, int j, int 
 CpuFlowReference::Faces CpuFlowReference::reconstruct(const State& s, int i, int j, int dir) const {
   const int di = dir == 0 ? 1 : 0, dj = 1 - di;
   const Prim c = prim(s, i, j, dir);
-  // The surface with the limiter over a minmod bed (flow_common.cl, reconstruct_surface); zero slopes
-  // next to outside cells and where a face thickness would be negative.
+  // The surface with the limiter over a minmod bed (flow_common.cl, reconstruct_surface), the bed
+  // slope scaled by the largest theta in [0, 1] that keeps both face thicknesses h -+ (se - theta db)/2
+  // non-negative; zero slopes next to outside cells, in dry cells and where no theta does.
   double dh = 0, de = 0, dun = 0, dut = 0;
   const bool bothInside = inside(i - di, j - dj) && inside(i + di, j + dj);
-  if (bothInside) {
+  if (bothInside && c.h > 0.0) {
     const Prim m = prim(s, i - di, j - dj, dir), p = prim(s, i + di, j + dj, dir);
     const double a = (c.eta - c.h) - (m.eta - m.h), b = (p.eta - p.h) - (c.eta - c.h);
     const double db = a * b <= 0.0 ? 0.0 : (std::fabs(a) < std::fabs(b) ? a : b);
     const double se = limiter(c.eta - m.eta, p.eta - c.eta);
-    const double half = 0.5 * (se - db);
-    if (c.h - half >= 0.0 && c.h + half >= 0.0) {
-      dh = se - db;
+    // theta db in [se - 2h, se + 2h]: an interval of theta (all of R when db = 0 and |se| <= 2h).
+    double tLo = 0.0, tHi = 1.0;
+    if (db > 0.0) {
+      tLo = std::max(tLo, (se - 2.0 * c.h) / db);
+      tHi = std::min(tHi, (se + 2.0 * c.h) / db);
+    } else if (db < 0.0) {
+      tLo = std::max(tLo, (se + 2.0 * c.h) / db);
+      tHi = std::min(tHi, (se - 2.0 * c.h) / db);
+    } else if (std::fabs(se) > 2.0 * c.h) {
+      tHi = -1.0;
+    }
+    if (tLo <= tHi) {
+      dh = se - tHi * db;
       de = se;
       dun = limiter(c.un - m.un, p.un - c.un);
       dut = limiter(c.ut - m.ut, p.ut - c.ut);
