@@ -306,11 +306,12 @@ __kernel void debris_stage(__constant const FlowParams* p, __constant const Debr
       Kp = earth_pressure(mp.phi, mp.delta, passive_share(fp_cell.hi.us - fp_cell.lo.us, p->dx, gn[kp], cp.hs + cp.hf));
     }
     SolidSide smL = solid_side(fm_cell.hi.hs, fm_cell.hi.zb, fm_cell.hi.us, fm_cell.hi.vs, fm_cell.hi.hf, Km, mm,
-                                     gm, gn[km]);
+                               gm, gn[km]);
     SolidSide smR = solid_side(own.lo.hs, own.lo.zb, own.lo.us, own.lo.vs, own.lo.hf, Kc, mc, g, gnk);
     SolidSide spL = solid_side(own.hi.hs, own.hi.zb, own.hi.us, own.hi.vs, own.hi.hf, Kc, mc, g, gnk);
     SolidSide spR = solid_side(fp_cell.lo.hs, fp_cell.lo.zb, fp_cell.lo.us, fp_cell.lo.vs, fp_cell.lo.hf, Kp, mp,
-                                     gpp, gn[kp]);
+                               gpp, gn[kp]);
+    // Static contacts (solid_bed.cl, point 6): each side's share of its strength at rest.
     const int lk = lock_st[k];
     const int lock_m = lk && (!m_in || lock_st[km]), lock_p = lk && (!p_in || lock_st[kp]);
     if (lk) {
