@@ -233,7 +233,8 @@ void addNumericsKeys(KeyRegistry& r) {
       << choice("Boundary Type", {"open", "wall", "level"}, "open",
                 "boundary condition at the raster edge: open (outflow only, the outside continues the inside), "
                 "wall, or level (outflow only against still water at the edge's initial surface outside, a free "
-                "overfall where it starts dry; keeps standing water at the edge at rest; single-phase runs)")
+                "overfall where it starts dry; keeps standing water at the edge at rest; in two-phase runs for the "
+                "fluid, the solids see an open edge)")
       << choice("Nodata Boundary Type", {"wall", "open", "level"}, "wall", "boundary condition at nodata cells (as Boundary Type)")
       << real("Minimum Flow Height", "1e-6", "m", 0, 1, "dry threshold below which velocity is zero")
       << flag("Skip Dry Tiles", "1", "skip 16x16-cell tiles with no flow within one tile (0: update every cell)");
