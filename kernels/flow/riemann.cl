@@ -134,15 +134,6 @@ inline HydrostaticFace hydrostatic_face(Side m, Side p) {
   return f;
 }
 
-/// The face between side m (minus) and side p (plus). An outside side (m_in or p_in zero) becomes
-/// the ghost of the inside one: a wall mirrors it with the normal velocity reversed; open and level
-/// boundaries (kinds BOUNDARY_OPEN, BOUNDARY_LEVEL) are outflow only: while the inside flow moves
-/// away from them, or while a level edge's ghost would push water in, they act as walls, so no water
-/// ever enters through them. While the flow moves towards them, the ghost of an open edge is the
-/// inside state (zero gradient: the outside continues the inside), that of a level edge the
-/// characteristic ghost of open_ghost against still water at level `far` outside (the inside cell's
-/// initial surface; NAN where no level is known: the two-phase fluid, which refuses level edges).
-/// Walls pass no mass and no tangential momentum.
 /// Replaces an outside side by the ghost of the inside one (see face_between); returns 1 when the
 /// face acts as a wall. Shared by the fluid and the solid fluxes.
 inline int ghost_sides(int m_in, Side* m, int p_in, Side* p, int kind) {
@@ -159,11 +150,20 @@ inline int ghost_sides(int m_in, Side* m, int p_in, Side* p, int kind) {
   return wall;
 }
 
+/// The face between side m (minus) and side p (plus). An outside side (m_in or p_in zero) becomes
+/// the ghost of the inside one: a wall mirrors it with the normal velocity reversed; open and level
+/// boundaries (kinds BOUNDARY_OPEN, BOUNDARY_LEVEL) are outflow only: while the inside flow moves
+/// away from them, or while a level edge's ghost would push water in, they act as walls, so no water
+/// ever enters through them. While the flow moves towards them, the ghost of an open edge is the
+/// inside state (zero gradient: the outside continues the inside), that of a level edge the
+/// characteristic ghost of open_ghost against still water at level `far` outside (the inside cell's
+/// initial surface; for the two-phase fluid, over the solids). Walls pass no mass and no tangential
+/// momentum.
 inline Face face_between(int m_in, Side m, int p_in, Side p, int kind, real far) {
   Face f = {0, 0, 0, 0, 0, 0};
   if (!m_in && !p_in) return f;
   int wall = ghost_sides(m_in, &m, p_in, &p, kind);
-  const int characteristic = (!m_in || !p_in) && !wall && kind == BOUNDARY_LEVEL && !isnan(far);
+  const int characteristic = (!m_in || !p_in) && !wall && kind == BOUNDARY_LEVEL;
   if (characteristic) {
     if (!m_in) open_ghost(&p, &m, (real)-1, far);
     else open_ghost(&m, &p, (real)1, far);
