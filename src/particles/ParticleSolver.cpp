@@ -128,7 +128,8 @@ ParticleSolver::ParticleSolver(compute::Context& ctx, const Grid& grid, const Pa
   stress_ = compute::Kernel(ctx.program("particles/particle_stress.cl"), "particle_stress");
   forces_ = compute::Kernel(ctx.program("particles/particle_forces.cl"), "particle_forces");
   const bool curved = terrain.slopeCorrection && terrain.curvature;
-  const std::string integrateOpts = std::string("-DPARTICLE_CURVATURE=") + (curved ? "1" : "0");
+  const std::string integrateOpts = std::string("-DPARTICLE_CURVATURE=") + (curved ? "1" : "0") +
+                                    " -DPARTICLE_METRIC=" + (terrain.slopeCorrection ? "1" : "0");
   integrate_ = compute::Kernel(ctx.program("particles/particle_integrate.cl", integrateOpts), "particle_integrate");
   speedKernel_ = compute::Kernel(ctx.program("particles/particle_integrate.cl", integrateOpts), "particle_totals");
   // The neighbour grid covers the raster with a margin of one support, so particles near the edge
