@@ -7,24 +7,24 @@
 // edges too. The plain sum rhoA_i = sum_j m_j W_ij of the spec is what this normalises: on the R2
 // layouts with h = 2 dp it scatters by +-15 % from particle to particle and sags at every edge, which
 // made an elastic bar ring 5 % slow and would drive spurious lateral pressure in a block at rest.
-#include "particles/particle_common.cl"
+// particle_stress.cl accumulates these sums in its own neighbour loop (one pass over the neighbours
+// for the thickness and the strain rate; a separate pass for the thickness alone cost a fifth of the
+// particle step), in the loop's fixed visiting order.
+#ifndef TALUS_PARTICLE_DENSITY_CL
+#define TALUS_PARTICLE_DENSITY_CL
+#include "common/real.cl"
 
-__kernel void particle_density(__constant const ParticleParams* p, __constant const NeighbourGridParams* ng,
-                               __global const uint* cell_start, __global const uint* cell_end,
-                               __global const real* x, __global const real* y, __global const real* V,
-                               __global const real* A, __global const real* rho, __global real* rhoA,
-                               __global real* H) {
-  const int i = get_global_id(0);
-  if (i >= p->count) return;
-  const real xi = x[i], yi = y[i], h = p->h, r2max = (real)4 * h * h;
-  real vol = 0, area = 0;
-  FOR_EACH_NEARBY_PARTICLE(ng, cell_start, cell_end, xi, yi, j) {
-    const real dx = xi - x[j], dy = yi - y[j], r2 = dx * dx + dy * dy;
-    if (r2 >= r2max) continue;
-    const real w = sph_w(sqrt(r2), h);
-    vol += V[j] * w;
-    area += A[j] * w;
-  }
-  H[i] = vol / area;
-  rhoA[i] = rho[i] * H[i];
+/// The sums of H_i over the neighbours j (i itself included): vol += V_j W_ij, area += A_j W_ij.
+typedef struct {
+  real vol, area;
+} ThicknessSums;
+
+inline void thickness_add(ThicknessSums* t, real Vj, real Aj, real w) {
+  t->vol += Vj * w;
+  t->area += Aj * w;
 }
+
+/// H_i = sum V_j W_ij / sum A_j W_ij.
+inline real thickness_of(ThicknessSums t) { return t.vol / t.area; }
+
+#endif

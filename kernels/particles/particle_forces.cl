@@ -21,34 +21,22 @@
 // - R_ij = R_i + R_j (Gray, Monaghan & Swift 2001): in the principal frame of N_i / rhoA_i^2, each
 //   tensile principal value s > 0 gives -eps s, compressive ones 0; rotated back. f_ij = W_ij / W(dp),
 //   dp the mean particle spacing. It acts only in tension, against the tensile clumping instability.
+#include "particles/artificial_stress.cl"
 #include "particles/particle_common.cl"
-
-/// The artificial-stress tensor R (xx, yy, xy) of a particle from its S = N / rhoA^2.
-inline real4 artificial_stress(real eps, real sxx, real syy, real sxy) {
-  const real c = (real)0.5 * (sxx + syy), d = (real)0.5 * (sxx - syy);
-  const real rad = sqrt(d * d + sxy * sxy);
-  const real s1 = c + rad, s2 = c - rad;
-  const real r1 = s1 > (real)0 ? -eps * s1 : (real)0, r2 = s2 > (real)0 ? -eps * s2 : (real)0;
-  // Principal direction of s1: angle theta with cos 2 theta = d / rad, sin 2 theta = sxy / rad.
-  const real c2 = rad > (real)0 ? d / rad : (real)1, s2t = rad > (real)0 ? sxy / rad : (real)0;
-  const real mean = (real)0.5 * (r1 + r2), dev = (real)0.5 * (r1 - r2);
-  return (real4)(mean + dev * c2, mean - dev * c2, dev * s2t, 0);
-}
 
 __kernel void particle_forces(__constant const ParticleParams* p, __constant const NeighbourGridParams* ng,
                               __global const uint* cell_start, __global const uint* cell_end,
                               __global const real* x, __global const real* y, __global const real* vx,
                               __global const real* vy, __global const real* m, __global const real* A, __global const real* rhoA,
                               __global const real* Nxx, __global const real* Nyy, __global const real* Nxy,
-                              __global const real* Minv, __global real* ax, __global real* ay) {
+                              __global const real* Minv, __global const real* Rart, __global real* ax, __global real* ay) {
   const int i = get_global_id(0);
   if (i >= p->count) return;
   const real h = p->h, r2max = (real)4 * h * h;
   const real xi = x[i], yi = y[i], vxi = vx[i], vyi = vy[i];
-  const real ri2 = rhoA[i] * rhoA[i];
-  const real4 Ri = p->eps_art > (real)0 ? artificial_stress(p->eps_art, Nxx[i] / ri2, Nyy[i] / ri2, Nxy[i] / ri2)
-                                        : (real4)(0);
-  const int cap = p->count;  // stride of the Minv rows
+  const int cap = p->count;  // stride of the Minv and Rart rows
+  const real rixx = Rart[i], riyy = Rart[cap + i], rixy = Rart[2 * cap + i];
+  const int ri_on = rixx != (real)0 || riyy != (real)0 || rixy != (real)0;
   const real ai00 = Minv[i], ai01 = Minv[cap + i], ai11 = Minv[2 * cap + i];
   const real nixx = Nxx[i], niyy = Nyy[i], nixy = Nxy[i];
   real accx = 0, accy = 0;  // regularising terms, sum_j m_j (...) . G_ij
@@ -67,15 +55,14 @@ __kernel void particle_forces(__constant const ParticleParams* p, __constant con
     fy += A[j] * (nixy * ux + niyy * uy + njxy * wx + njyy * wy);
     // Regularising terms with G_ij (most pairs have none: no tension, not approaching).
     real txx = 0, tyy = 0, txy = 0;
-    if (p->eps_art > (real)0) {
-      const real rj2 = rhoA[j] * rhoA[j];
-      const real4 Rj = artificial_stress(p->eps_art, njxx / rj2, njyy / rj2, njxy / rj2);
+    const real rjxx = Rart[j], rjyy = Rart[cap + j], rjxy = Rart[2 * cap + j];
+    if (ri_on || rjxx != (real)0 || rjyy != (real)0 || rjxy != (real)0) {
       const real f = sph_w(sqrt(r2), h) / p->w_spacing;
       real fn = (real)1;
       for (int k = 0; k < (int)p->n_art; ++k) fn *= f;
-      txx += fn * (Ri.x + Rj.x);
-      tyy += fn * (Ri.y + Rj.y);
-      txy += fn * (Ri.z + Rj.z);
+      txx += fn * (rixx + rjxx);
+      tyy += fn * (riyy + rjyy);
+      txy += fn * (rixy + rjxy);
     }
     const real vdotr = (vxi - vx[j]) * dx + (vyi - vy[j]) * dy;
     if (vdotr < (real)0 && (p->alpha_pi > (real)0 || p->beta_pi > (real)0)) {

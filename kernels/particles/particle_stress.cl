@@ -1,4 +1,6 @@
-// Stress of the particles over one sub-step (spec §5, OpenLISEM Hazard P.79-P.82, P.26, P.41-P.43):
+// Thickness and stress of the particles over one sub-step (spec §5, OpenLISEM Hazard P.74-P.75,
+// P.79-P.82, P.26, P.41-P.43), in one pass over each particle's neighbours:
+// 0. the thickness H_i and areal density rhoA_i = rho_i H_i (particle_density.cl);
 // 1. velocity gradient L_i = [sum_j A_j (v_j - v_i) (x) grad_i W_ij] M_i^-1, A_j the area a particle
 //    stands for (particle_density.cl), with the kernel-gradient correction M_i = sum_j V_j (x_j - x_i) (x)
 //    grad_i W_ij (Bonet & Lok 1999), which makes L exact for linear velocity fields also at free
@@ -14,6 +16,8 @@
 // K: Savage-Hutter from phi and delta, active while the particle's velocity field extends or stays
 // (tr L >= 0) and ramping to passive as it contracts (as the grid's solids), or constant.
 #include "common/earth_pressure.cl"
+#include "particles/artificial_stress.cl"
+#include "particles/particle_density.cl"
 #include "particles/particle_material.cl"
 
 /// K of a particle whose velocity field has the divergence tr L: constant, or Savage-Hutter with the
@@ -28,23 +32,25 @@ inline real particle_earth_pressure(__constant const ParticleParams* p, real phi
 __kernel void particle_stress(__constant const ParticleParams* p, __constant const NeighbourGridParams* ng,
                               __global const uint* cell_start, __global const uint* cell_end,
                               __global const real* x, __global const real* y, __global const real* vx,
-                              __global const real* vy, __global const real* A,
-                              __global const real* H, __global const real* rho, __global const real* gn,
+                              __global const real* vy, __global const real* V, __global const real* A,
+                              __global real* H, __global const real* rho, __global const real* gn,
                               __global const real* phi, __global const real* delta, __global real* sxx,
                               __global real* syy, __global real* sxy, __global real* coh,
                               __global const real* coh0, __global real* plastic, __global real* Nxx,
                               __global real* Nyy, __global real* Nxy, __global real* Minv, __global real* divergence,
-                              const real dt) {
+                              __global real* rhoA, __global real* Rart, const real dt) {
   const int i = get_global_id(0);
   if (i >= p->count) return;
   const real h = p->h, r2max = (real)4 * h * h;
   const real xi = x[i], yi = y[i], vxi = vx[i], vyi = vy[i];
   real g00 = 0, g01 = 0, g10 = 0, g11 = 0;  // sum V_j (v_j - v_i) (x) grad W
   real m00 = 0, m01 = 0, m10 = 0, m11 = 0;  // sum V_j (x_j - x_i) (x) grad W
+  ThicknessSums th = {0, 0};
   FOR_EACH_NEARBY_PARTICLE(ng, cell_start, cell_end, xi, yi, j) {
-    if (j == (uint)i) continue;
     const real dx = xi - x[j], dy = yi - y[j], r2 = dx * dx + dy * dy;
     if (r2 >= r2max) continue;
+    thickness_add(&th, V[j], A[j], sph_w(sqrt(r2), h));
+    if (j == (uint)i) continue;
     const real2 gw = sph_grad((real2)(dx, dy), h);
     const real V = A[j];
     const real du = vx[j] - vxi, dv = vy[j] - vyi;
@@ -68,7 +74,10 @@ __kernel void particle_stress(__constant const ParticleParams* p, __constant con
     L10 = g10 * i00 + g11 * i10;
     L11 = g10 * i01 + g11 * i11;
   }
-  const real Hi = H[i], rhoi = rho[i];
+  const real Hi = thickness_of(th), rhoi = rho[i];
+  const real rhoAi = rhoi * Hi;
+  H[i] = Hi;
+  rhoA[i] = rhoAi;
   const real gni = terrain_sample(p, gn, xi, yi);
   const real pzz = (real)0.5 * rhoi * gni * Hi;
   const real K = particle_earth_pressure(p, phi[i], delta[i], L00 + L11, gni, Hi);
@@ -88,4 +97,12 @@ __kernel void particle_stress(__constant const ParticleParams* p, __constant con
   Minv[cap + i] = (real)0.5 * (i01 + i10);
   Minv[2 * cap + i] = i11;
   divergence[i] = L00 + L11;  // for the area update dA/dt = A div v (particle_integrate)
+  // The artificial stress of the new N (artificial_stress.cl), once per particle for particle_forces.
+  const real ri2 = rhoAi * rhoAi;
+  const real4 R = p->eps_art > (real)0
+                      ? artificial_stress(p->eps_art, Nxx[i] / ri2, Nyy[i] / ri2, Nxy[i] / ri2)
+                      : (real4)(0);
+  Rart[i] = R.x;
+  Rart[cap + i] = R.y;
+  Rart[2 * cap + i] = R.z;
 }

@@ -124,7 +124,6 @@ ParticleSolver::ParticleSolver(compute::Context& ctx, const Grid& grid, const Pa
   gn_.upload(gn);
   gnHost_ = gn;
   params_ = compute::RawBuffer(ctx, sizeof(ParticleParamsT<double>), "particle parameters");
-  density_ = compute::Kernel(ctx.program("particles/particle_density.cl"), "particle_density");
   stress_ = compute::Kernel(ctx.program("particles/particle_stress.cl"), "particle_stress");
   forces_ = compute::Kernel(ctx.program("particles/particle_forces.cl"), "particle_forces");
   const bool curved = terrain.slopeCorrection && terrain.curvature;
@@ -273,6 +272,7 @@ void ParticleSolver::setParticles(const SeededParticles& seeded, const ParticleM
   make(outMass_, "particle outflow");
   speed_ = compute::RealBuffer(ctx_, 5 * capacity_, "particle totals");
   Minv_ = compute::RealBuffer(ctx_, 3 * capacity_, "particle gradient correction");
+  artStress_ = compute::RealBuffer(ctx_, 3 * capacity_, "particle artificial stress");
   if (n == 0) {
     writeParams();
     updateDiagnostics();
@@ -407,10 +407,9 @@ bool ParticleSolver::sortAndEvaluateStress(double ds) {
   }
   if (count_ == 0) return false;
   const compute::Range global{count_};
-  density_.bind(params_, ng.params(), ng.cellStart(), ng.cellEnd(), x_, y_, V_, A_, rho_, rhoA_, H_);
-  density_.launch(global, kParticleGroup, "particle_density");
-  stress_.bind(params_, ng.params(), ng.cellStart(), ng.cellEnd(), x_, y_, vx_, vy_, A_, H_, rho_, gn_, phi_, delta_, sxx_,
-               syy_, sxy_, coh_, coh0_, plastic_, Nxx_, Nyy_, Nxy_, Minv_, div_, compute::RealArg{ds});
+  stress_.bind(params_, ng.params(), ng.cellStart(), ng.cellEnd(), x_, y_, vx_, vy_, V_, A_, H_, rho_, gn_, phi_, delta_, sxx_,
+               syy_, sxy_, coh_, coh0_, plastic_, Nxx_, Nyy_, Nxy_, Minv_, div_, rhoA_, artStress_,
+               compute::RealArg{ds});
   stress_.launch(global, kParticleGroup, "particle_stress");
   return true;
 }
@@ -420,7 +419,7 @@ void ParticleSolver::subStep(double ds) {
   NeighbourGrid& ng = *neighbours_;
   const compute::Range global{count_};
   forces_.bind(params_, ng.params(), ng.cellStart(), ng.cellEnd(), x_, y_, vx_, vy_, m_, A_, rhoA_, Nxx_, Nyy_, Nxy_, Minv_,
-               ax_, ay_);
+               artStress_, ax_, ay_);
   forces_.launch(global, kParticleGroup, "particle_forces");
   integrate_.bind(params_, mask_, bed_, gradX_, gradY_, gn_, limitedSlope_, x_, y_, vx_, vy_, m_, delta_, ax_, ay_, A_, div_, V_, rho_, Vf_,
                   Vf0_, coh_, coh0_, released_, fluidDepth_, liftOff_, outMass_, compute::RealArg{ds});

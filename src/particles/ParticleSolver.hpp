@@ -169,7 +169,8 @@ class ParticleSolver {
   std::vector<double> gnHost_;
   // Per sub-step scratch (not reordered).
   compute::RealBuffer rhoA_, H_, Nxx_, Nyy_, Nxy_, Minv_, div_, ax_, ay_, outMass_, speed_;
-  compute::Kernel density_, stress_, forces_, integrate_, speedKernel_;
+  compute::RealBuffer artStress_;  ///< R of each particle (artificial_stress.cl), rows of the capacity
+  compute::Kernel stress_, forces_, integrate_, speedKernel_;
 };
 
 }  // namespace talus::particles
