@@ -2,7 +2,7 @@
 // P.79-P.82, P.26, P.41-P.43), in one pass over each particle's neighbours:
 // 0. the thickness H_i and areal density rhoA_i = rho_i H_i (particle_density.cl);
 // 1. velocity gradient L_i = [sum_j A_j (v_j - v_i) (x) grad_i W_ij] M_i^-1, A_j the area a particle
-//    stands for (particle_density.cl), with the kernel-gradient correction M_i = sum_j V_j (x_j - x_i) (x)
+//    stands for (particle_density.cl), with the kernel-gradient correction M_i = sum_j A_j (x_j - x_i) (x)
 //    grad_i W_ij (Bonet & Lok 1999), which makes L exact for linear velocity fields also at free
 //    edges; where M is near singular (fewer than three neighbours in general position) no
 //    correction is applied;
@@ -43,8 +43,8 @@ __kernel void particle_stress(__constant const ParticleParams* p, __constant con
   if (i >= p->count) return;
   const real h = p->h, r2max = (real)4 * h * h;
   const real xi = x[i], yi = y[i], vxi = vx[i], vyi = vy[i];
-  real g00 = 0, g01 = 0, g10 = 0, g11 = 0;  // sum V_j (v_j - v_i) (x) grad W
-  real m00 = 0, m01 = 0, m10 = 0, m11 = 0;  // sum V_j (x_j - x_i) (x) grad W
+  real g00 = 0, g01 = 0, g10 = 0, g11 = 0;  // sum A_j (v_j - v_i) (x) grad W
+  real m00 = 0, m01 = 0, m10 = 0, m11 = 0;  // sum A_j (x_j - x_i) (x) grad W
   ThicknessSums th = {0, 0};
   FOR_EACH_NEARBY_PARTICLE(ng, cell_start, cell_end, xi, yi, j) {
     const real dx = xi - x[j], dy = yi - y[j], r2 = dx * dx + dy * dy;
@@ -52,16 +52,16 @@ __kernel void particle_stress(__constant const ParticleParams* p, __constant con
     thickness_add(&th, V[j], A[j], sph_w(sqrt(r2), h));
     if (j == (uint)i) continue;
     const real2 gw = sph_grad((real2)(dx, dy), h);
-    const real V = A[j];
+    const real aj = A[j];  // the area the neighbour stands for
     const real du = vx[j] - vxi, dv = vy[j] - vyi;
-    g00 += V * du * gw.x;
-    g01 += V * du * gw.y;
-    g10 += V * dv * gw.x;
-    g11 += V * dv * gw.y;
-    m00 -= V * dx * gw.x;
-    m01 -= V * dx * gw.y;
-    m10 -= V * dy * gw.x;
-    m11 -= V * dy * gw.y;
+    g00 += aj * du * gw.x;
+    g01 += aj * du * gw.y;
+    g10 += aj * dv * gw.x;
+    g11 += aj * dv * gw.y;
+    m00 -= aj * dx * gw.x;
+    m01 -= aj * dx * gw.y;
+    m10 -= aj * dy * gw.x;
+    m11 -= aj * dy * gw.y;
   }
   // L = G M^-1 when M is well conditioned (det above 1e-3 of its value for a full support, ~1).
   real L00 = g00, L01 = g01, L10 = g10, L11 = g11;
