@@ -21,6 +21,9 @@
 // - R_ij = R_i + R_j (Gray, Monaghan & Swift 2001): in the principal frame of N_i / rhoA_i^2, each
 //   tensile principal value s > 0 gives -eps s, compressive ones 0; rotated back. f_ij = W_ij / W(dp),
 //   dp the mean particle spacing. It acts only in tension, against the tensile clumping instability.
+// Energy of the regularising terms: the viscous and the artificial-stress accelerations also go to
+// rows 1-2 and 3-4 of `tally` (rows of p->count entries), where particle_integrate turns them into
+// their work over the sub-step (see there).
 #include "particles/artificial_stress.cl"
 #include "particles/particle_common.cl"
 
@@ -29,7 +32,8 @@ __kernel void particle_forces(__constant const ParticleParams* p, __constant con
                               __global const real* x, __global const real* y, __global const real* vx,
                               __global const real* vy, __global const real* m, __global const real* A, __global const real* rhoA,
                               __global const real* Nxx, __global const real* Nyy, __global const real* Nxy,
-                              __global const real* Minv, __global const real* Rart, __global real* ax, __global real* ay) {
+                              __global const real* Minv, __global const real* Rart, __global real* ax, __global real* ay,
+                              __global real* tally) {
   const int i = get_global_id(0);
   if (i >= p->count) return;
   const real h = p->h, r2max = (real)4 * h * h;
@@ -39,7 +43,8 @@ __kernel void particle_forces(__constant const ParticleParams* p, __constant con
   const int ri_on = rixx != (real)0 || riyy != (real)0 || rixy != (real)0;
   const real ai00 = Minv[i], ai01 = Minv[cap + i], ai11 = Minv[2 * cap + i];
   const real nixx = Nxx[i], niyy = Nyy[i], nixy = Nxy[i];
-  real accx = 0, accy = 0;  // regularising terms, sum_j m_j (...) . G_ij
+  real accx = 0, accy = 0;  // artificial stress, sum_j m_j f^n R_ij . G_ij
+  real avx = 0, avy = 0;    // artificial viscosity, -sum_j m_j Pi_ij G_ij
   real fx = 0, fy = 0;      // stress term, sum_j A_j (N_i C_i + N_j C_j) g_ij
   FOR_EACH_NEARBY_PARTICLE(ng, cell_start, cell_end, xi, yi, j) {
     if (j == (uint)i) continue;
@@ -54,7 +59,7 @@ __kernel void particle_forces(__constant const ParticleParams* p, __constant con
     fx += A[j] * (nixx * ux + nixy * uy + njxx * wx + njxy * wy);
     fy += A[j] * (nixy * ux + niyy * uy + njxy * wx + njyy * wy);
     // Regularising terms with G_ij (most pairs have none: no tension, not approaching).
-    real txx = 0, tyy = 0, txy = 0;
+    real txx = 0, tyy = 0, txy = 0, pi = 0;
     const real rjxx = Rart[j], rjyy = Rart[cap + j], rjxy = Rart[2 * cap + j];
     if (ri_on || rjxx != (real)0 || rjyy != (real)0 || rjxy != (real)0) {
       const real f = sph_w(sqrt(r2), h) / p->w_spacing;
@@ -67,18 +72,22 @@ __kernel void particle_forces(__constant const ParticleParams* p, __constant con
     const real vdotr = (vxi - vx[j]) * dx + (vyi - vy[j]) * dy;
     if (vdotr < (real)0 && (p->alpha_pi > (real)0 || p->beta_pi > (real)0)) {
       const real mu = h * vdotr / (r2 + (real)0.01 * h * h);
-      const real pi = (-p->alpha_pi * p->sound_speed * mu + p->beta_pi * mu * mu) / ((real)0.5 * (rhoA[i] + rhoA[j]));
-      txx -= pi;
-      tyy -= pi;
+      pi = (-p->alpha_pi * p->sound_speed * mu + p->beta_pi * mu * mu) / ((real)0.5 * (rhoA[i] + rhoA[j]));
     }
-    if (txx != (real)0 || tyy != (real)0 || txy != (real)0) {
+    if (txx != (real)0 || tyy != (real)0 || txy != (real)0 || pi != (real)0) {
       const real c00 = (real)0.5 * (ai00 + bj00), c01 = (real)0.5 * (ai01 + bj01), c11 = (real)0.5 * (ai11 + bj11);
       const real gx = c00 * g0.x + c01 * g0.y, gy = c01 * g0.x + c11 * g0.y;
       accx += m[j] * (txx * gx + txy * gy);
       accy += m[j] * (txy * gx + tyy * gy);
+      avx -= m[j] * pi * gx;
+      avy -= m[j] * pi * gy;
     }
   }
   const real s = A[i] / m[i];
-  ax[i] = accx + s * fx;
-  ay[i] = accy + s * fy;
+  ax[i] = accx + avx + s * fx;
+  ay[i] = accy + avy + s * fy;
+  tally[cap + i] = avx;
+  tally[2 * cap + i] = avy;
+  tally[3 * cap + i] = accx;
+  tally[4 * cap + i] = accy;
 }

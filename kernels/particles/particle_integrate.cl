@@ -6,9 +6,17 @@
 // and pore pressure reduce the effective normal stress, P.39), then
 // v <- v + dt a, x <- x + dt v (symplectic Euler), and the particle's area A <- A exp(dt div v). A particle that crosses an open boundary (the raster
 // edge with `Boundary Type=open`, a nodata cell with `Nodata Boundary Type=open`; walls hold it, see
-// Walls below) is removed: its mass goes to `out_mass` (tallied by the host as outflow), its
+// Walls below) is removed: its mass goes to row 0 of `tally` (tallied by the host as outflow), its
 // position becomes NaN (it sorts behind every live particle at the next neighbour build) and its
 // mass zero.
+// Work of the artificial terms: particle_forces leaves the viscous and the artificial-stress
+// accelerations in rows 1-2 and 3-4 of `tally` (rows of p->count entries); their work over the
+// sub-step, dt m a . (v_start + v_end) / 2, replaces them in rows 1 and 2 (row 0 is the outflow
+// mass). With the midpoint velocity the work is exact for the update: on a flat frictionless bed the
+// kinetic energy changes by exactly the work of the internal forces. On a slope it is the work in the
+// bed's metric (the kinetic energy there is m v^T G v / 2, and the applied acceleration G^-1 a has
+// the power m a . v). The artificial viscosity's work is never positive for a pair; its sum over the
+// particles and sub-steps is the energy it dissipated (ParticleSolver's diagnostics).
 // Water release (OpenLISEM Hazard P.27-P.28): the confined fluid follows the intact bonds,
 // V_f = V_f0 c / c0; what the particle loses, dV = V_f - V_f0 c / c0 >= 0 (c never rises), leaves
 // its volume and mass (rho_f dV) and is added to `released`, which the host moves to the grid's free
@@ -55,10 +63,14 @@ __kernel void particle_integrate(__constant const ParticleParams* p, __global co
                                  __global real* V, __global real* rho, __global real* Vf,
                                  __global const real* Vf0, __global const real* coh, __global const real* coh0,
                                  __global real* released, __global const real* fluid_depth,
-                                 __global real* lift_off, __global real* out_mass, const real dt) {
+                                 __global real* lift_off, __global real* tally, const real dt) {
   const int i = get_global_id(0);
   if (i >= p->count) return;
-  out_mass[i] = 0;
+  const int cap = p->count;
+  const real avx = tally[cap + i], avy = tally[2 * cap + i], asx = tally[3 * cap + i], asy = tally[4 * cap + i];
+  tally[i] = 0;  // outflow mass
+  tally[cap + i] = 0;
+  tally[2 * cap + i] = 0;
   if (!(m[i] > (real)0)) return;
   if (coh0[i] > (real)0 && Vf[i] > (real)0) {
     const real dV = fmax((real)0, Vf[i] - Vf0[i] * coh[i] / coh0[i]);
@@ -153,9 +165,14 @@ __kernel void particle_integrate(__constant const ParticleParams* p, __global co
       }
     }
   }
+  {
+    const real wx = (real)0.5 * dt * m[i] * (u0 + ux), wy = (real)0.5 * dt * m[i] * (v0 + uy);
+    tally[cap + i] = avx * wx + avy * wy;
+    tally[2 * cap + i] = asx * wx + asy * wy;
+  }
   const int cell = terrain_cell(p, xn, yn);
   if (cell < 0 || !mask[cell]) {
-    out_mass[i] = m[i] + p->rho_f * released[i];
+    tally[i] = m[i] + p->rho_f * released[i];
     released[i] = 0;
     m[i] = 0;
     x[i] = y[i] = NAN;

@@ -257,6 +257,7 @@ void ParticleSolver::setParticles(const SeededParticles& seeded, const ParticleM
   const std::vector<double> coh = perParticle(material.cohesion, n, "cohesion");
   capacity_ = std::max<std::size_t>(n, 1);
   count_ = n;
+  diag_.viscousDissipation = diag_.artificialStressWork = 0;
   auto make = [&](compute::RealBuffer& b, const char* label) { b = compute::RealBuffer(ctx_, capacity_, label); };
   make(A_, "particle area"), make(V_, "particle volume"), make(div_, "particle divergence");
   make(fsc0_, "particle initial structured fraction"), make(ffc0_, "particle initial confined fraction");
@@ -269,7 +270,7 @@ void ParticleSolver::setParticles(const SeededParticles& seeded, const ParticleM
   make(syy_, "particle syy"), make(sxy_, "particle sxy"), make(plastic_, "particle plastic strain");
   make(rhoA_, "particle areal density"), make(H_, "particle thickness"), make(Nxx_, "particle Nxx");
   make(Nyy_, "particle Nyy"), make(Nxy_, "particle Nxy"), make(ax_, "particle ax"), make(ay_, "particle ay");
-  make(outMass_, "particle outflow");
+  tally_ = compute::RealBuffer(ctx_, 5 * capacity_, "particle sub-step tallies");
   speed_ = compute::RealBuffer(ctx_, 5 * capacity_, "particle totals");
   Minv_ = compute::RealBuffer(ctx_, 3 * capacity_, "particle gradient correction");
   artStress_ = compute::RealBuffer(ctx_, 3 * capacity_, "particle artificial stress");
@@ -362,11 +363,16 @@ void ParticleSolver::reorderAll() {
   for (auto f : stateFields()) neighbours_->reorder(this->*f);
 }
 
+// Checkpoint layout: count, time, the two cumulative energies of the artificial terms, then each
+// state field's first `count` entries. Checkpoints written before the energies were tallied (format
+// 4 without them) have no energies and still restore, with the tallies starting from zero.
 std::vector<char> ParticleSolver::saveState() const {
   const uint64_t count = count_;
-  std::vector<char> bytes(sizeof count + sizeof time_);
+  const double energies[2] = {diag_.viscousDissipation, diag_.artificialStressWork};
+  std::vector<char> bytes(sizeof count + sizeof time_ + sizeof energies);
   std::memcpy(bytes.data(), &count, sizeof count);
   std::memcpy(bytes.data() + sizeof count, &time_, sizeof time_);
+  std::memcpy(bytes.data() + sizeof count + sizeof time_, energies, sizeof energies);
   const std::size_t each = count_ * compute::realSize(ctx_.precision());
   for (auto f : stateFields()) {
     const std::size_t at = bytes.size();
@@ -381,13 +387,19 @@ void ParticleSolver::restoreState(const std::vector<char>& bytes) {
   gridValid_ = false;
   const auto& fields = stateFields();
   const std::size_t unit = compute::realSize(ctx_.precision());
+  double energies[2] = {0, 0};
   if (bytes.size() >= sizeof count + sizeof time_) std::memcpy(&count, bytes.data(), sizeof count);
-  if (bytes.size() != sizeof count + sizeof time_ + fields.size() * count * unit || count > capacity_)
+  const std::size_t fieldBytes = fields.size() * count * unit, head = sizeof count + sizeof time_;
+  const bool withEnergies = bytes.size() == head + sizeof energies + fieldBytes;
+  if ((!withEnergies && bytes.size() != head + fieldBytes) || count > capacity_)
     throw InputError("checkpoint: the particle state does not fit this run's particles (" + std::to_string(capacity_) +
                      " seeded, " + compute::precisionName(ctx_.precision()) + ")");
   std::memcpy(&time_, bytes.data() + sizeof count, sizeof time_);
+  if (withEnergies) std::memcpy(energies, bytes.data() + head, sizeof energies);
+  diag_.viscousDissipation = energies[0];
+  diag_.artificialStressWork = energies[1];
   count_ = count;
-  std::size_t at = sizeof count + sizeof time_;
+  std::size_t at = head + (withEnergies ? sizeof energies : 0);
   for (auto f : fields) {
     if (count) (this->*f).raw().writeBytes(bytes.data() + at, count * unit);
     at += count * unit;
@@ -419,12 +431,18 @@ void ParticleSolver::subStep(double ds) {
   NeighbourGrid& ng = *neighbours_;
   const compute::Range global{count_};
   forces_.bind(params_, ng.params(), ng.cellStart(), ng.cellEnd(), x_, y_, vx_, vy_, m_, A_, rhoA_, Nxx_, Nyy_, Nxy_, Minv_,
-               artStress_, ax_, ay_);
+               artStress_, ax_, ay_, tally_);
   forces_.launch(global, kParticleGroup, "particle_forces");
   integrate_.bind(params_, mask_, bed_, gradX_, gradY_, gn_, limitedSlope_, x_, y_, vx_, vy_, m_, delta_, ax_, ay_, A_, div_, V_, rho_, Vf_,
-                  Vf0_, coh_, coh0_, released_, fluidDepth_, liftOff_, outMass_, compute::RealArg{ds});
+                  Vf0_, coh_, coh0_, released_, fluidDepth_, liftOff_, tally_, compute::RealArg{ds});
   integrate_.launch(global, kParticleGroup, "particle_integrate");
-  diag_.outflowMass += reducer_.sum(outMass_, count_);
+  // Rows of count_ entries (particle_integrate): the outflow mass, and the work of the artificial
+  // viscosity and of the artificial stress over the sub-step (with the midpoint velocity).
+  using compute::ReduceOp;
+  const std::vector<double> t = reducer_.reduceRows(tally_, count_, {ReduceOp::Sum, ReduceOp::Sum, ReduceOp::Sum}, count_);
+  diag_.outflowMass += t[0];
+  diag_.viscousDissipation -= t[1];
+  diag_.artificialStressWork += t[2];
 }
 
 void ParticleSolver::computeDerivedFields() {

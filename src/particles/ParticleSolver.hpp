@@ -66,6 +66,10 @@ struct ParticleDiagnostics {
   double maxSpeed = 0;         ///< [m/s]
   double confinedFluid = 0;    ///< fluid volume held by the particles [m^3]
   double pendingRelease = 0;   ///< fluid released from broken bonds, not yet moved to the grid [m^3]
+  /// Energy the artificial viscosity dissipated since the start (>= 0) [J] (particle_forces.cl).
+  double viscousDissipation = 0;
+  /// Work the artificial stress did on the particles since the start (either sign) [J].
+  double artificialStressWork = 0;
   int subSteps = 0;            ///< sub-steps of the last step
 };
 
@@ -168,7 +172,10 @@ class ParticleSolver {
   compute::RealBuffer cellU_, cellV_;  ///< the cells' confined-phase velocity after the exchange (PIC share only)
   std::vector<double> gnHost_;
   // Per sub-step scratch (not reordered).
-  compute::RealBuffer rhoA_, H_, Nxx_, Nyy_, Nxy_, Minv_, div_, ax_, ay_, outMass_, speed_;
+  compute::RealBuffer rhoA_, H_, Nxx_, Nyy_, Nxy_, Minv_, div_, ax_, ay_, speed_;
+  /// Rows of count_ entries per sub-step: outflow mass, then the artificial viscosity's and the artificial
+  /// stress's acceleration (x, y) from particle_forces, which particle_integrate turns into their work.
+  compute::RealBuffer tally_;
   compute::RealBuffer artStress_;  ///< R of each particle (artificial_stress.cl), rows of the capacity
   compute::Kernel stress_, forces_, integrate_, speedKernel_;
 };

@@ -40,8 +40,13 @@ class ParticleRun : public ParticleView {
   double cumulativeOutflow() const { return outflow_; }
   /// (mass + outflow + rho_f released water - initial) / initial.
   double balanceError() const;
-  /// Columns for diagnostics.csv: particles, mass [kg], outflow of the step [kg], kinetic [J].
-  static const char* csvHeader() { return "particles,particle_mass_kg,particle_outflow_kg,particle_kinetic_J"; }
+  /// Columns for diagnostics.csv: particles, mass [kg], outflow of the step [kg], kinetic [J], and
+  /// since the start the energy the artificial viscosity dissipated and the work of the artificial
+  /// stress [J].
+  static const char* csvHeader() {
+    return "particles,particle_mass_kg,particle_outflow_kg,particle_kinetic_J,particle_viscous_dissipation_J,"
+           "particle_art_stress_work_J";
+  }
   std::string csvRow() const;
   /// Writes the particles as a GeoPackage point layer (docs/outputs.md, "Particle layers").
   void writeLayer(const std::string& path) const;

@@ -17,7 +17,8 @@ constexpr const char* kCsvHeader =
     "step,time_s,dt_s,volume_m3,outflow_m3,cumulative_outflow_m3,balance_error,kinetic_energy_J,max_wave_speed_m_s,"
     "fluid_volume_m3,solid_volume_m3,fluid_outflow_m3,solid_outflow_m3,"
     "potential_energy_J,vertical_kinetic_J,energy_released_J,energy_lost_J,friction_drag_work_J,"
-    "particles,particle_mass_kg,particle_outflow_kg,particle_kinetic_J,cumulative_rain_m3,cumulative_infiltrated_m3,wall_s";
+    "particles,particle_mass_kg,particle_outflow_kg,particle_kinetic_J,particle_viscous_dissipation_J,"
+    "particle_art_stress_work_J,cumulative_rain_m3,cumulative_infiltrated_m3,wall_s";
 
 /// Total volume (both phases) and total outflow of the last step.
 double totalVolume(const flow::FlowDiagnostics& d) { return d.volume + d.volumeSolid; }
@@ -256,7 +257,7 @@ Progress Simulation::stepOnce() {
   char sourcesText[64];
   std::snprintf(sourcesText, sizeof sourcesText, ",%.12g,%.12g", totalRain_, totalInfiltrated_);
   guardedWrite([&] {
-    out_->appendDiagnostics(kCsvHeader, std::string(line) + (particles_ ? particles_->csvRow() : "0,0,0,0") +
+    out_->appendDiagnostics(kCsvHeader, std::string(line) + (particles_ ? particles_->csvRow() : "0,0,0,0,0,0") +
                                             sourcesText + wallText);
   });
   if (solver_->time() >= nextReport_ * (1 - 1e-15)) {

@@ -232,7 +232,9 @@ std::string Simulation::summaryJson(const RunSummary& s, Ending ending) const {
   if (particles_)
     o << ",\n  \"particles\": {\"count\": " << particles_->count() << ", \"initial_mass_kg\": " << particles_->initialMass()
       << ", \"final_mass_kg\": " << particles_->mass() << ", \"outflow_kg\": " << particles_->cumulativeOutflow()
-      << ", \"balance_error\": " << particles_->balanceError() << "}";
+      << ", \"balance_error\": " << particles_->balanceError()
+      << ", \"viscous_dissipation_J\": " << particles_->solver().diagnostics().viscousDissipation
+      << ", \"art_stress_work_J\": " << particles_->solver().diagnostics().artificialStressWork << "}";
   o << "\n}\n";
   return o.str();
 }

@@ -1,0 +1,161 @@
+#!/usr/bin/env python3
+"""How much the paper's fracture regimes owe to the particles' numerical terms (issue 18, item 1).
+
+  particle_regime_study.py WORK_DIR [--talus build/src/talus] [--only NAME,...] [--jobs 1]
+
+Runs variants of the paper's numerical tests (data/paper_setup1_B, paper_setup2_B; A and C as
+controls) with `talus run` and tabulates, per run, the share of the particle mass whose bonds are
+broken (c/c0 < 0.1) at the end, the mean c/c0, the deposit's downslope extent, the peak kinetic
+energy and the energy the artificial viscosity dissipated (summary.json). The variants change one
+numerical choice at a time, never the material:
+  - the artificial viscosity (alpha_Pi, beta_Pi): the paper's (1, 1), Bui et al.'s (0.1, 0), none (0, 0);
+  - the cohesion c of scenario B across its regime boundary (60-120 kPa);
+  - particles per cell (4, the scenes' value; 9) and the smoothing length (h = 1 and 1.5 cells).
+Only the Python standard library is needed (the particle layer is read with sqlite3). Results go to
+WORK_DIR/regime_study.csv and a Markdown table on standard output. Each run takes 20-120 s on two
+PoCL cores.
+"""
+import argparse
+import csv
+import json
+import os
+import pathlib
+import re
+import sqlite3
+import struct
+import subprocess
+import sys
+import time
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+BROKEN = 0.1  # c/c0 below which a particle counts as broken (docs/scenes.md)
+
+
+def variants():
+    """(name, scene, {run-file key: value}) of every run of the study."""
+    out = []
+    av = {"paper": ("1", "1"), "bui": ("0.1", "0"), "none": ("0", "0")}
+    for setup in ("1", "2"):
+        for c in ("60", "75", "85", "90", "120"):
+            for tag, (a, b) in av.items():
+                out.append((f"s{setup}B_c{c}_av{tag}", f"paper_setup{setup}_B",
+                            {"Initial Cohesion": c, "Artificial Viscosity Alpha": a, "Artificial Viscosity Beta": b}))
+        for scen in ("A", "C"):
+            for tag in ("paper", "bui"):
+                a, b = av[tag]
+                out.append((f"s{setup}{scen}_av{tag}", f"paper_setup{setup}_{scen}",
+                            {"Artificial Viscosity Alpha": a, "Artificial Viscosity Beta": b}))
+    for c in ("75", "90"):
+        for tag in ("paper", "bui"):
+            a, b = av[tag]
+            base = {"Initial Cohesion": c, "Artificial Viscosity Alpha": a, "Artificial Viscosity Beta": b}
+            out.append((f"s1B_c{c}_av{tag}_ppc9", "paper_setup1_B", dict(base, **{"Particles Per Cell": "9"})))
+            out.append((f"s1B_c{c}_av{tag}_h1.5", "paper_setup1_B", dict(base, **{"Smoothing Length Factor": "1.5"})))
+    return out
+
+
+def set_keys(text, keys):
+    """The run-file text with each key set (replaced where present, else added to its section)."""
+    sections = {"Initial Cohesion": "Solids"}
+    for key, value in keys.items():
+        pat = re.compile(r"^" + re.escape(key) + r"=.*$", re.M)
+        if pat.search(text):
+            text = pat.sub(f"{key}={value}", text)
+        else:
+            sec = sections.get(key, "Particles")
+            text = text.replace(f"[{sec}]\n", f"[{sec}]\n{key}={value}\n", 1)
+    return text
+
+
+def read_points(gpkg):
+    """(x, mass, cohesion_fraction) of every particle of a Talus particle layer."""
+    con = sqlite3.connect(str(gpkg))
+    table = con.execute("SELECT table_name FROM gpkg_contents WHERE data_type='features'").fetchone()[0]
+    geom = con.execute("SELECT column_name FROM gpkg_geometry_columns WHERE table_name=?", (table,)).fetchone()[0]
+    rows = con.execute(f'SELECT "{geom}", mass, cohesion_fraction FROM "{table}"').fetchall()
+    con.close()
+    out = []
+    for blob, mass, frac in rows:
+        flags = blob[3]
+        env = [0, 32, 48, 48, 64][(flags >> 1) & 7]
+        wkb = blob[8 + env:]
+        order = "<" if wkb[0] == 1 else ">"
+        x, _y = struct.unpack(order + "dd", wkb[5:21])
+        out.append((x, mass, frac))
+    return out
+
+
+def run_one(talus, work, name, scene, keys):
+    d = work / name
+    d.mkdir(parents=True, exist_ok=True)
+    src = ROOT / "data" / scene
+    for f in src.iterdir():
+        if f.suffix == ".tif":
+            dst = d / f.name
+            if not dst.exists():
+                os.symlink(f, dst)
+    text = set_keys((src / f"{scene}.run").read_text(), keys)
+    (d / "run.run").write_text(text)
+    summary = d / "output" / "summary.json"
+    if not summary.exists():
+        t0 = time.time()
+        r = subprocess.run([str(talus), "run", str(d / "run.run")], capture_output=True, text=True)
+        if r.returncode != 0:
+            sys.stderr.write(f"{name}: talus run failed ({r.returncode}): {r.stderr[-400:]}\n")
+            return None
+        (d / "wall_s").write_text(f"{time.time() - t0:.1f}\n")
+    s = json.loads(summary.read_text())
+    pts = read_points(d / "output" / "particles_final.gpkg")
+    mass = sum(p[1] for p in pts)
+    broken = sum(p[1] for p in pts if p[2] < BROKEN) / mass if mass > 0 else float("nan")
+    mean_frac = sum(p[1] * p[2] for p in pts) / mass if mass > 0 else float("nan")
+    xs = sorted(p[0] for p in pts)
+    peak_ke = 0.0
+    with open(d / "output" / "diagnostics.csv") as fh:
+        for row in csv.DictReader(fh):
+            peak_ke = max(peak_ke, float(row["particle_kinetic_J"]))
+    part = s.get("particles", {})
+    wall = float((d / "wall_s").read_text()) if (d / "wall_s").exists() else float("nan")
+    return dict(name=name, scene=scene, **{k.lower().replace(" ", "_"): v for k, v in keys.items()},
+                broken=broken, mean_c_frac=mean_frac, x_min=xs[0] if xs else float("nan"),
+                x_max=xs[-1] if xs else float("nan"), particles=len(pts), peak_ke_J=peak_ke,
+                viscous_J=part.get("viscous_dissipation_J", float("nan")),
+                art_stress_J=part.get("art_stress_work_J", float("nan")), wall_s=wall)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("work", type=pathlib.Path)
+    ap.add_argument("--talus", type=pathlib.Path, default=ROOT / "build" / "src" / "talus")
+    ap.add_argument("--only", default="", help="comma-separated run names (default: all)")
+    a = ap.parse_args()
+    a.work.mkdir(parents=True, exist_ok=True)
+    only = set(filter(None, a.only.split(",")))
+    results = []
+    for name, scene, keys in variants():
+        if only and name not in only:
+            continue
+        r = run_one(a.talus, a.work, name, scene, keys)
+        if r:
+            results.append(r)
+            print(f"{name}: broken {100 * r['broken']:.0f} %, mean c/c0 {r['mean_c_frac']:.2f}, "
+                  f"x {r['x_min']:.0f}-{r['x_max']:.0f} m, viscous {r['viscous_J']:.3g} J of peak KE "
+                  f"{r['peak_ke_J']:.3g} J, {r['wall_s']:.0f} s", flush=True)
+    if not results:
+        return 1
+    keys = sorted({k for r in results for k in r}, key=lambda k: list(results[0]).index(k) if k in results[0] else 99)
+    with open(a.work / "regime_study.csv", "w", newline="") as fh:
+        w = csv.DictWriter(fh, fieldnames=keys)
+        w.writeheader()
+        w.writerows(results)
+    print("\n| run | broken (mass) | mean c/c0 | deposit x (m) | viscous dissipation / peak KE |")
+    print("|---|---|---|---|---|")
+    for r in results:
+        ratio = r["viscous_J"] / r["peak_ke_J"] if r["peak_ke_J"] > 0 else float("nan")
+        print(f"| {r['name']} | {100 * r['broken']:.0f} % | {r['mean_c_frac']:.2f} | "
+              f"{r['x_min']:.0f}–{r['x_max']:.0f} | {ratio:.2f} |")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
