@@ -271,7 +271,7 @@ ParticleResult runParticleDamBreak(double E, double soundSpeed, double ppc, Prec
   ParticleResult r;
   const double rho = 2000.0;
   r.waveSpeed = soundSpeed > 0 ? soundSpeed
-                               : std::sqrt((ps.bulkModulus() + 4.0 / 3.0 * ps.shearModulus()) / rho);
+                               : std::sqrt(ps.inPlaneWaveModulus() / rho);
   const auto t0 = std::chrono::steady_clock::now();
   constexpr int kOuter = 30;  // as the test: 30 outer steps of T / 30, sub-stepped by the solver
   for (int k = 0; k < kOuter; ++k) {

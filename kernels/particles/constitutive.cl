@@ -16,32 +16,44 @@
 //
 // One step over dt, given the velocity gradient L^ab = dv^a/dx^b (stress_update):
 //  1. Rates (P.79, P.80): strain rate eps' = (L + L^T)/2 (the paper's P.12 and P.70 print a minus
-//     sign here by mistake), spin w = (L - L^T)/2, volumetric rate eps'_v = L_xx + L_yy (the
-//     in-plane model has no vertical strain rate, as in Bui's plane strain).
+//     sign here by mistake), spin w = (L - L^T)/2, in-plane volumetric rate eps'_v = L_xx + L_yy.
 //  2. Jaumann rotation (P.23, P.81): the co-rotational terms sigma w^T + w sigma are integrated
 //     exactly: sigma <- Q sigma Q^T with Q = exp(w dt), a rotation by w_xy dt (for the pair (d, xy)
 //     a rotation by 2 w_xy dt). To first order in dt this is sigma + dt (sigma w^T + w sigma); unlike
 //     that forward-Euler form, which inflates J2 by (1 + (2 w_xy dt)^2) every step, it leaves I1 and
 //     J2 unchanged to round-off under any rigid rotation (incremental objectivity, Hughes & Winget
 //     1980 do the same with a Cayley rotation).
-//  3. Elastic trial (P.13/P.21 without the plastic term): sigma* = sigma + dt (2G e' + K eps'_v I),
-//     e' = eps' - eps'_v/3 I (deviatoric), G = E/(2(1+nu)), K = E/(3(1-2nu)) (P.14). In-plane
-//     components: 2G eps'_ab + (K - 2G/3) eps'_v delta_ab.
+//  3. Elastic trial (P.13/P.21 without the plastic term), plane stress: G = E/(2(1+nu)),
+//     K = E/(3(1-2nu)) (P.14), lambda = K - 2G/3. The layer is thin and its vertical stress is not
+//     integrated but prescribed (the overburden), so its vertical strain is free: the in-plane law
+//     is Hooke's with sigma_zz unchanged, 2G eps'_ab + lambda* eps'_v delta_ab with
+//     lambda* = 2G lambda / (lambda + 2G) = E nu / (1 - nu^2) (the plane-stress condensation of
+//     P.13; elastic vertical strain rate -lambda/(lambda + 2G) eps'_v). A bar then rings at
+//     sqrt(E/rho). (Until 2026-12 the kernel used Bui's plane-strain law, lambda in place of
+//     lambda*: a vertical strain held at zero, which the depth-averaged layer, free at its surface,
+//     has no means to hold; its in-plane bulk modulus lambda + G was 35 % stiffer at nu = 0.3.)
 //  4. Yield check, Drucker-Prager fitted to Mohr-Coulomb in plane strain (P.16, P.20 = P.71, the
 //     fit Bui uses): f = alpha_phi I1 + sqrt(J2) - k_c with
 //       alpha_phi = tan(phi) / sqrt(9 + 12 tan^2 phi),  k_c = 3 c / sqrt(9 + 12 tan^2 phi).
 //     f* <= 0: the step is elastic and sigma* is the result.
-//  5. Plastic corrector (P.21-P.22, P.81-P.82, from Bui's consistency condition) with the
-//     non-associated potential
-//       g = alpha_psi I1 + sqrt(J2),  dg/dsigma = alpha_psi I + s / (2 sqrt(J2)),
-//     so D : dg/dsigma = 3 K alpha_psi I + G s / sqrt(J2) and df/dsigma : D : dg/dsigma =
-//     9 alpha_phi alpha_psi K + G. The multiplier of the step is the consistency condition at the
-//     trial state, dlambda = f* / (9 alpha_phi alpha_psi K + G); when sigma_n lies on the surface,
-//     f* = dt (3 alpha_phi K eps'_v + G s:e' / sqrt(J2)) + O(dt^2), so dlambda = lambda' dt with
-//     lambda' of P.82 (this is the backward-Euler form of Bui's explicit rate). The in-plane
-//     components take sigma -= dlambda (3 K alpha_psi delta + G s / sqrt(J2)); the deviatoric part
-//     removed is capped at all of it (a larger dlambda means a return to the apex region, handled
-//     by step 6, and must not flip the deviator).
+//  5. Plastic corrector (P.21-P.22, P.81-P.82, from Bui's consistency condition, in plane stress)
+//     with the non-associated potential
+//       g = alpha_psi I1 + sqrt(J2),  n = dg/dsigma = alpha_psi I + s / (2 sqrt(J2)).
+//     The plastic strain rate lambda' n has a vertical part; with sigma_zz held, the elastic
+//     vertical strain takes it up, so the in-plane stress changes by the plane-stress law of step 3
+//     applied to the in-plane part of n:
+//       C_ab = G s_ab / sqrt(J2) + kappa delta_ab,  kappa = 2 G alpha_psi + lambda* (2 alpha_psi - r/2),
+//     r = s_zz / sqrt(J2) (n_xx + n_yy = 2 alpha_psi - r/2, as s_xx + s_yy = -s_zz). The consistency
+//     condition at the trial state, with df/dsigma = alpha_phi I + s / (2 sqrt(J2)) on the in-plane
+//     components (s_in : s_in = 2 J2 - s_zz^2), gives dlambda = f* / h with
+//       h = G (1 - r^2/2) + lambda* r^2/4 + (G + lambda*) (4 alpha_phi alpha_psi - (alpha_phi + alpha_psi) r).
+//     h > 0 for every state: it is concave in r (lambda* < 2G for nu < 1/2), |r| <= 2/sqrt3, and at
+//     the ends it is (G + lambda*)(1/sqrt3 -+ 2 alpha_phi)(1/sqrt3 -+ 2 alpha_psi) > 0 since
+//     alpha < 1/(2 sqrt3) for angles below 90 degrees. (For 3D Hooke the same steps give Bui's
+//     9 alpha_phi alpha_psi K + G; when sigma_n lies on the surface dlambda = lambda' dt + O(dt^2):
+//     the backward-Euler form of his explicit rate.) The in-plane components take
+//     sigma -= dlambda C; the deviatoric part removed is capped at all of it (a larger dlambda means
+//     a return to the apex region, handled by step 6, and must not flip the deviator).
 //     Dilatancy coefficient: alpha_psi = tan(psi) / sqrt(9 + 12 tan^2 psi), the same plane-strain
 //     fit as alpha_phi. With it a plastic plane-strain flow (zero vertical plastic strain rate)
 //     dilates at exactly the Mohr-Coulomb angle psi (sin psi = -(e1 + e3)/(e1 - e3) of the plastic
@@ -114,7 +126,7 @@ typedef struct {
 /// The constants of the update for one particle's material (dp_material).
 typedef struct {
   real G;          // shear modulus [Pa]
-  real K;          // bulk modulus [Pa]
+  real K2;         // in-plane bulk modulus of plane stress, lambda* + G = E / (2 (1 - nu)) [Pa]
   real alpha_phi;  // friction coefficient of the yield function (P.20) [-]
   real alpha_psi;  // dilatancy coefficient of the plastic potential [-]
   real k_c;        // cohesion term of the yield function (P.20) [Pa]
@@ -143,16 +155,25 @@ inline real dp_cohesion_term(real c, real phi) { return (real)3 * c * dp_fit_fac
 /// plane-strain fit as alpha_phi (see the header, step 5, for why not Bui's 3 sin psi).
 inline real dp_dilatancy_coefficient(real psi) { return tan(psi) * dp_fit_factor(psi); }
 
-/// The update constants from Young's modulus E [Pa], Poisson's ratio nu [-] (P.14), friction angle
-/// phi, cohesion c [Pa] (the current, possibly degraded, value) and dilatancy angle psi [rad].
-inline DPMaterial dp_material(real E, real nu, real phi, real c, real psi) {
+/// The update constants from the shear modulus G and the in-plane bulk modulus K2 [Pa] (both
+/// positive), friction angle phi, cohesion c [Pa] (the current, possibly degraded, value) and
+/// dilatancy angle psi [rad]. The particle kernels get G and K2 from the host, computed in double
+/// from E and nu: the in-plane law needs them, and reconstructing nu in float from large moduli
+/// (G = 1e14 Pa with E = 1e7 Pa is nu = -1 + 5e-8) is not possible.
+inline DPMaterial dp_material_of_moduli(real G, real K2, real phi, real c, real psi) {
   DPMaterial m;
-  m.G = E / ((real)2 * ((real)1 + nu));
-  m.K = E / ((real)3 * ((real)1 - (real)2 * nu));
+  m.G = G;
+  m.K2 = K2;
   m.alpha_phi = dp_alpha(phi);
   m.alpha_psi = dp_dilatancy_coefficient(psi);
   m.k_c = dp_cohesion_term(c, phi);
   return m;
+}
+
+/// The same from Young's modulus E [Pa] and Poisson's ratio nu [-] (P.14): G = E / (2 (1 + nu)),
+/// K2 = E / (2 (1 - nu)).
+inline DPMaterial dp_material(real E, real nu, real phi, real c, real psi) {
+  return dp_material_of_moduli(E / ((real)2 * ((real)1 + nu)), E / ((real)2 * ((real)1 - nu)), phi, c, psi);
 }
 
 /// I1 and J2 of the 3D state (xx, yy, szz, xy) with zero out-of-plane shears (P.18, P.19).
@@ -237,12 +258,13 @@ inline StressUpdate stress_update(PlaneStress* s, VelocityGradient L, real szz, 
   const real exx = L.xx, eyy = L.yy, exy = (real)0.5 * (L.xy + L.yx);
   const real spin = (real)0.5 * (L.xy - L.yx);
   u.eps_v_rate = exx + eyy;
-  // 2. Exact Jaumann rotation; 3. elastic trial (plane strain Hooke: lambda = K - 2G/3).
+  // 2. Exact Jaumann rotation; 3. elastic trial (plane-stress Hooke, written with the two positive
+  // moduli G and K2 = lambda* + G: 2G e + lambda* tr(e) I = G (e_xx - e_yy) (1, -1) + K2 tr(e) (1, 1)).
   PlaneStress tr = stress_rotate(*s, spin, dt);
-  const real lame = m.K - (real)2 * m.G / (real)3, twoG = (real)2 * m.G;
-  tr.xx += dt * (twoG * exx + lame * u.eps_v_rate);
-  tr.yy += dt * (twoG * eyy + lame * u.eps_v_rate);
-  tr.xy += dt * (twoG * exy);
+  const real G = m.G, K2 = m.K2, shear = G * (exx - eyy), bulk = K2 * u.eps_v_rate;
+  tr.xx += dt * (bulk + shear);
+  tr.yy += dt * (bulk - shear);
+  tr.xy += dt * ((real)2 * G * exy);
   // 4. Yield check.
   real I1, J2;
   dp_invariants(tr, szz, &I1, &J2);
@@ -252,12 +274,18 @@ inline StressUpdate stress_update(PlaneStress* s, VelocityGradient L, real szz, 
     *s = tr;
     return u;
   }
-  // 5. Plastic corrector (in-plane components of dlambda D : dg/dsigma).
+  // 5. Plastic corrector (plane stress: dlambda C with C_ab = G s_ab / sqrt(J2) + kappa delta_ab).
   u.flags = CONS_YIELDED;
-  u.dlambda = f / ((real)9 * m.alpha_phi * m.alpha_psi * m.K + m.G);
   const real mean = I1 / (real)3;
-  const real vol = (real)3 * m.K * m.alpha_psi * u.dlambda;
-  const real dev = sqJ2 > (real)0 ? fmin((real)1, m.G * u.dlambda / sqJ2) : (real)1;
+  const real r = sqJ2 > (real)0 ? (szz - mean) / sqJ2 : (real)0;
+  const real ap = m.alpha_phi, aq = m.alpha_psi;
+  // kappa and h of the header with lambda* = K2 - G (its first two terms are then non-negative).
+  const real kappa = (real)2 * aq * K2 - (real)0.5 * (K2 - G) * r;
+  const real h = G * ((real)1 - (real)0.75 * r * r) + (real)0.25 * K2 * r * r +
+                 K2 * ((real)4 * ap * aq - (ap + aq) * r);
+  u.dlambda = f / h;
+  const real vol = kappa * u.dlambda;
+  const real dev = sqJ2 > (real)0 ? fmin((real)1, G * u.dlambda / sqJ2) : (real)1;
   PlaneStress pc;
   pc.xx = tr.xx - vol - dev * (tr.xx - mean);
   pc.yy = tr.yy - vol - dev * (tr.yy - mean);

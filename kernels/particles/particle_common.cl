@@ -19,7 +19,7 @@ typedef struct {
   real dx;                // terrain cell [m]
   real h;                 // SPH smoothing length [m] (support 2h)
   real shear_modulus;     // G [Pa]
-  real bulk_modulus;      // K [Pa]
+  real plane_bulk_modulus;  // in-plane bulk modulus of plane stress, E / (2 (1 - nu)) [Pa]
   real sound_speed;       // c of the artificial viscosity [m/s]
   real alpha_pi, beta_pi; // Monaghan artificial viscosity constants (P.83-P.84)
   real eps_art;           // Gray-Monaghan artificial stress epsilon_0 (P.85-P.86)

@@ -143,6 +143,14 @@ __kernel void particle_integrate(__constant const ParticleParams* p, __global co
     ux *= f;
     uy *= f;
   }
+  if (!(isfinite(ux) && isfinite(uy))) {
+    // A non-finite velocity is an instability, not outflow: it stays on the particle, where the
+    // run's health check finds it and stops the run with that diagnosis (it used to be taken for
+    // a particle leaving the domain and tallied as outflow).
+    vx[i] = ux;
+    vy[i] = uy;
+    return;
+  }
   real xn = xi + dt * ux, yn = yi + dt * uy;
   {
     // Walls, axis by axis (a corner is two walls): a jump of the reconstructed bed above the

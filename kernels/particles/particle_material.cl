@@ -29,13 +29,10 @@ inline real bell_rankine(real K, real pzz, real c) {
 /// Advances the particle's stress and cohesion by dt; returns the lateral stress sigma_lat.
 inline real particle_material_update(__constant const ParticleParams* p, MaterialState* s, real L00, real L01,
                                      real L10, real L11, real pzz, real K, real phi, real c0, real dt) {
-  const real G = p->shear_modulus, Kb = p->bulk_modulus;
-  const real E = (real)9 * Kb * G / ((real)3 * Kb + G);
-  const real nu = ((real)3 * Kb - (real)2 * G) / ((real)2 * ((real)3 * Kb + G));
   const real lat = bell_rankine(K, pzz, s->c);
   PlaneStress total = {s->sxx + lat, s->syy + lat, s->sxy};
   const VelocityGradient L = {L00, L01, L10, L11};
-  const DPMaterial m = dp_material(E, nu, phi, s->c, p->dilatancy);
+  const DPMaterial m = dp_material_of_moduli(p->shear_modulus, p->plane_bulk_modulus, phi, s->c, p->dilatancy);
   const StressUpdate u = stress_update(&total, L, -pzz, m, dt);
   s->sxx = total.xx - lat;
   s->syy = total.yy - lat;

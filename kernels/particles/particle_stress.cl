@@ -1,18 +1,25 @@
 // Thickness and stress of the particles over one sub-step (spec §5, OpenLISEM Hazard P.74-P.75,
 // P.79-P.82, P.26, P.41-P.43), in one pass over each particle's neighbours:
 // 0. the thickness H_i and areal density rhoA_i = rho_i H_i (particle_density.cl);
-// 1. velocity gradient L_i = [sum_j A_j (v_j - v_i) (x) grad_i W_ij] M_i^-1, A_j the area a particle
-//    stands for (particle_density.cl), with the kernel-gradient correction M_i = sum_j A_j (x_j - x_i) (x)
-//    grad_i W_ij (Bonet & Lok 1999), which makes L exact for linear velocity fields also at free
-//    edges; where M is near singular (fewer than three neighbours in general position) no
-//    correction is applied;
+// 1. velocity gradient L_i = [sum_j A_j (v_j - v_i) (x) grad_i W_ij] C_i, A_j the area a particle
+//    stands for (particle_density.cl), with the kernel-gradient correction C = M^-1 of
+//    M_i = sum_j A_j (x_j - x_i) (x) grad_i W_ij (Bonet & Lok 1999), which makes L exact for linear
+//    velocity fields also at free edges. M is symmetric and positive semi-definite, I for a full
+//    support, and singular for a particle with fewer than three neighbours in general position (a
+//    fragment, a pair flying apart). C is its damped inverse (M^2 + d^2 I)^-1 M, d = 0.01: M^-1 to
+//    1e-4 where the support is at least half full, and where it is not, the exact finite difference
+//    along the directions the neighbours span, tapering to 0 as they leave (a lone particle has no
+//    strain rate). (Until 2026-12 a particle with det M <= 1e-3 took C = I: its L then scaled with
+//    its neighbours' areas A_j, whose growth dA/dt = A div v fed back on itself; in the paper's
+//    fragmenting setup 1 C two particles flying apart reached A = 1e34 m^2, overflowed in float,
+//    and were counted as outflow.);
 // 2. the elasto-plastic update of the in-plane elastic stress (Jaumann rate, Drucker-Prager return,
 //    cohesion degradation and the fractions that follow the bonds: particle_material.cl) with the
 //    Bell-Rankine lateral stress sigma_lat = -max(0, K p_zz - 2 c sqrt(K)), p_zz = rho g_n H / 2,
 //    added to both normal components for the yield check (the total in-plane stress is
 //    sigma + sigma_lat I) and the vertical stress sigma_zz = -p_zz (P.41);
-// 3. the depth-integrated stress N = H (sigma + sigma_lat I) and M_i^-1 (identity where M is near
-//    singular), used by particle_forces.
+// 3. the depth-integrated stress N = H (sigma + sigma_lat I) and C_i, used by particle_forces (whose
+//    forces are the adjoint of this L for any symmetric C).
 // K: Savage-Hutter from phi and delta, active while the particle's velocity field extends or stays
 // (tr L >= 0) and ramping to passive as it contracts (as the grid's solids), or constant.
 #include "common/earth_pressure.cl"
@@ -63,17 +70,19 @@ __kernel void particle_stress(__constant const ParticleParams* p, __constant con
     m10 -= aj * dy * gw.x;
     m11 -= aj * dy * gw.y;
   }
-  // L = G M^-1 when M is well conditioned (det above 1e-3 of its value for a full support, ~1).
-  real L00 = g00, L01 = g01, L10 = g10, L11 = g11;
-  const real det = m00 * m11 - m01 * m10;
-  real i00 = 1, i01 = 0, i10 = 0, i11 = 1;
-  if (fabs(det) > (real)1e-3) {
-    i00 = m11 / det, i01 = -m01 / det, i10 = -m10 / det, i11 = m00 / det;
-    L00 = g00 * i00 + g01 * i10;
-    L01 = g00 * i01 + g01 * i11;
-    L10 = g10 * i00 + g11 * i10;
-    L11 = g10 * i01 + g11 * i11;
+  // C = (M^2 + d^2 I)^-1 M with d = 0.01 (header, point 1); M symmetric: m01 = m10 up to rounding.
+  real i00, i01, i11;
+  {
+    const real mo = (real)0.5 * (m01 + m10), d2 = (real)1e-4;
+    const real q00 = m00 * m00 + mo * mo + d2, q01 = mo * (m00 + m11), q11 = m11 * m11 + mo * mo + d2;
+    const real qdet = q00 * q11 - q01 * q01;  // >= d^4 > 0
+    i00 = (q11 * m00 - q01 * mo) / qdet;
+    i01 = (q11 * mo - q01 * m11) / qdet;
+    i11 = (q00 * m11 - q01 * mo) / qdet;
   }
+  const real i10 = i01;
+  const real L00 = g00 * i00 + g01 * i10, L01 = g00 * i01 + g01 * i11;
+  const real L10 = g10 * i00 + g11 * i10, L11 = g10 * i01 + g11 * i11;
   const real Hi = thickness_of(th), rhoi = rho[i];
   const real rhoAi = rhoi * Hi;
   H[i] = Hi;
@@ -94,7 +103,7 @@ __kernel void particle_stress(__constant const ParticleParams* p, __constant con
   // The correction matrix for the momentum equation (M is symmetric: one off-diagonal term).
   const int cap = p->count;  // stride of the Minv rows
   Minv[i] = i00;
-  Minv[cap + i] = (real)0.5 * (i01 + i10);
+  Minv[cap + i] = i01;
   Minv[2 * cap + i] = i11;
   divergence[i] = L00 + L11;  // for the area update dA/dt = A div v (particle_integrate)
   // The artificial stress of the new N (artificial_stress.cl), once per particle for particle_forces.

@@ -11,7 +11,7 @@ struct ParticleParamsT {
   int32_t count;
   int32_t earthPressure;  // 0 Savage-Hutter active/passive, 1 constant
   int32_t edgeWall, nodataWall;  // 1 where the raster edge / nodata faces are walls, 0 open
-  Real dx, h, shearModulus, bulkModulus, soundSpeed, alphaPi, betaPi, epsArt, nArt, wSpacing, dilatancy, epsCrit,
+  Real dx, h, shearModulus, planeBulkModulus, soundSpeed, alphaPi, betaPi, epsArt, nArt, wSpacing, dilatancy, epsCrit,
       kConst, poreB, rhoF, pad1;
 };
 

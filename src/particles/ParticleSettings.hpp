@@ -32,6 +32,12 @@ struct ParticleSettings {
 
   double shearModulus() const { return youngModulus / (2 * (1 + poisson)); }
   double bulkModulus() const { return youngModulus / (3 * (1 - 2 * poisson)); }
+  /// The in-plane bulk modulus of plane stress, lambda* + G = E / (2 (1 - nu)) [Pa]
+  /// (kernels/particles/constitutive.cl, step 3).
+  double planeBulkModulus() const { return youngModulus / (2 * (1 - poisson)); }
+  /// The modulus of the fastest in-plane elastic wave of the plane-stress law the particles use
+  /// (kernels/particles/constitutive.cl, step 3): lambda* + 2G = E / (1 - nu^2) [Pa].
+  double inPlaneWaveModulus() const { return youngModulus / (1 - poisson * poisson); }
 };
 
 }  // namespace talus::particles

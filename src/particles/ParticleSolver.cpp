@@ -53,7 +53,7 @@ void fillParams(compute::RawBuffer& buf, const Grid& g, const ParticleSettings& 
   p.dx = static_cast<Real>(g.dx);
   p.h = static_cast<Real>(h);
   p.shearModulus = static_cast<Real>(s.shearModulus());
-  p.bulkModulus = static_cast<Real>(s.bulkModulus());
+  p.planeBulkModulus = static_cast<Real>(s.planeBulkModulus());
   p.soundSpeed = static_cast<Real>(soundSpeed);
   p.alphaPi = static_cast<Real>(s.alphaPi);
   p.betaPi = static_cast<Real>(s.betaPi);
@@ -298,7 +298,7 @@ void ParticleSolver::setParticles(const SeededParticles& seeded, const ParticleM
   const double seededCells = static_cast<double>(std::unique(cells.begin(), cells.end()) - cells.begin());
   spacing_ = grid_.dx * std::sqrt(seededCells / static_cast<double>(n));
   const double rhoMin = *std::min_element(rho.begin(), rho.end());
-  const double elastic = std::sqrt((settings_.bulkModulus() + 4.0 / 3.0 * settings_.shearModulus()) / rhoMin);
+  const double elastic = std::sqrt(settings_.inPlaneWaveModulus() / rhoMin);
   waveSpeed_ = settings_.soundSpeed > 0 ? settings_.soundSpeed : elastic;
   writeParams();
   updateDiagnostics();

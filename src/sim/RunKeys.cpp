@@ -153,7 +153,7 @@ void addParticleKeys(KeyRegistry& r) {
       << real("Critical Strain", "0.1", "-", 1e-6, 10, "epsilon_c of the cohesion degradation while yielding (P.26)")
       << real("Dilatancy Angle", "0", "rad", 0, 1.5, "psi of the plastic flow")
       << real("Sound Speed", "0", "m/s", 0, 1e6,
-              "c of the time step and artificial viscosity; 0: elastic sqrt((K + 4G/3) / rho)")
+              "c of the time step and artificial viscosity; 0: elastic sqrt(E / (rho (1 - nu^2))), plane stress")
       << real("Smoothing Length Factor", "1", "-", 0.5, 3, "SPH smoothing length h in cells (paper: 1)")
       << real("Particle CFL", "0.2", "-", 0.01, 1, "particle sub-step dt = CFL h / (c + |v|max)")
       << real("Artificial Viscosity Alpha", "1", "-", 0, 10, "alpha_Pi of Monaghan's artificial viscosity (P.83)")

@@ -23,9 +23,13 @@
 // sees the same values), and the device's own rounding is ~50 x 6e-8 ~ 3e-6 S in the worst chain;
 // we allow 2e-5 S (measured worst figures are printed with TALUS_TEST_VERBOSE=1). A wrong sign, a
 // missing term or a wrong factor changes a result by at least dt |L| E ~ 1e-3 S or by the
-// plasticity correction, both far above these. The one ill-conditioned spot of the return, the
-// square root of R_max near the in-plane tension/compression limits, is met by random inputs
-// with probability ~1e-8 (double) and is not sampled.
+// plasticity correction, both far above these. The one ill-conditioned spot of the return is the
+// square root of R_max^2 = (Y - |q|/sqrt3)(Y + |q|/sqrt3) near the in-plane tension and
+// compression limits, where R_max -> 0: an error e S in its factors (each below 2 S) moves R_max^2
+// by up to 2 e S^2, so R_max by e S^2 / R_max, and by at most sqrt(2 e) S. With the plane-stress
+// corrector many returns end near a limit (the plastic flow takes the in-plane mean toward it), so
+// a particle that ends with the shear radius R > 0 (the larger of device and reference) is allowed
+// tol + min(sqrt(tol), tol S / R) (the particles that needed more than tol are counted and printed).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -230,14 +234,18 @@ ReferenceRun referenceRun(const Particle& p, double dt, int steps) {
 void expectMatchesReference(const std::vector<Particle>& ps, const std::vector<DeviceResult>& got, double dt,
                             int steps, double tol, bool isDouble, const char* what) {
   double worstStress = 0, worstC = 0;
-  int bad = 0, flagDiffs = 0, yielded = 0, cut = 0, capped = 0, scaled = 0, beyondApex = 0;
+  int bad = 0, flagDiffs = 0, yielded = 0, cut = 0, capped = 0, scaled = 0, beyondApex = 0, nearLimits = 0;
   for (std::size_t i = 0; i < ps.size(); ++i) {
     const ReferenceRun ref = referenceRun(ps[i], dt, steps);
     const DeviceResult& d = got[i];
     const double S = stressScale(ps[i], ref.s, dt);
     const double err = std::max({std::fabs(d.s.xx - ref.s.xx), std::fabs(d.s.yy - ref.s.yy),
                                  std::fabs(d.s.xy - ref.s.xy)}) / S;
-    worstStress = std::max(worstStress, err);
+    // The ill-conditioned end near the in-plane limits (file header).
+    const double rEnd = std::max(shearRadius(ref.s), shearRadius(d.s));
+    const double allowed = tol + (rEnd > 0.0 ? std::min(std::sqrt(tol), tol * S / rEnd) : 0.0);
+    nearLimits += err > tol;
+    worstStress = std::max(worstStress, err / allowed);
     yielded += (d.flags & kYielded) != 0, cut += (d.flags & kTensionCut) != 0;
     capped += (d.flags & kCompressionCap) != 0;
     scaled += (d.flags & kScaled) != 0;
@@ -256,11 +264,12 @@ void expectMatchesReference(const std::vector<Particle>& ps, const std::vector<D
     if (steps == 1 && !borderline) {
       EXPECT_EQ(d.yieldingSteps, ref.yieldingSteps) << what << " particle " << i;
     }
-    if (!(err <= tol) && ++bad <= 5)
+    if (!(err <= allowed) && ++bad <= 5)
       ADD_FAILURE() << what << " particle " << i << ": device (" << d.s.xx << ", " << d.s.yy << ", " << d.s.xy
                     << "), reference (" << ref.s.xx << ", " << ref.s.yy << ", " << ref.s.xy << "), |diff|/S "
-                    << err << " > " << tol << ", flags " << d.flags;
-    // The multiplier as a stress: dlambda (9 alpha alpha_psi K + G).
+                    << err << " > " << allowed << ", flags " << d.flags;
+    // The multiplier as a stress: dlambda times the 3D form of its denominator, 9 alpha alpha_psi K + G
+    // (a scale: the plane-stress denominator h of the kernel lies between G/3 and it).
     const ConstitutiveMaterial& m = ps[i].mat;
     const double h = 9.0 * alphaPhi(m.phi) * alphaPhi(m.psi) * bulkModulus(m) + shearModulus(m);
     EXPECT_LE(std::fabs(d.dlambda - ref.last.dlambda) * h, 4 * tol * S) << what << " particle " << i;
@@ -284,8 +293,9 @@ void expectMatchesReference(const std::vector<Particle>& ps, const std::vector<D
   EXPECT_GT(beyondApex, static_cast<int>(ps.size() / 10)) << what;
   if (verbose())
     std::fprintf(stderr, "%s: %zu particles (%d start beyond the apex), %d yielded (%d scaled, %d tension cut, "
-                 "%d compression cap), worst stress |diff|/S %.3g (tol %.1g), worst cohesion |diff|/c0 %.3g\n",
-                 what, ps.size(), beyondApex, yielded, scaled, cut, capped, worstStress, tol, worstC);
+                 "%d compression cap), %d needed more than tol (ending near an in-plane limit), worst stress "
+                 "|diff|/S over its allowance %.3g (tol %.1g), worst cohesion |diff|/c0 %.3g\n",
+                 what, ps.size(), beyondApex, yielded, scaled, cut, capped, nearLimits, worstStress, tol, worstC);
 }
 
 TEST_P(ConstitutiveTest, MatchesCpuReferenceOnRandomParticles) {
@@ -354,13 +364,14 @@ TEST_P(ConstitutiveTest, ElasticStepEqualsLinearElasticJaumannRate) {
     const Particle& p = ps[i];
     ASSERT_EQ(got[i].flags, 0) << "particle " << i << " yielded";
     EXPECT_EQ(got[i].dlambda, 0.0);
-    // sigma + dt (sigma w^T + w sigma + 2G e' + K tr(eps') I), in-plane components.
-    const double G = shearModulus(p.mat), K = bulkModulus(p.mat);
+    // sigma + dt (sigma w^T + w sigma + 2G eps' + lambda* tr(eps') I), in-plane components, with the
+    // plane-stress lambda* = E nu / (1 - nu^2) (the layer's vertical stress is prescribed).
+    const double G = shearModulus(p.mat), lameStar = p.mat.E * p.mat.nu / (1.0 - p.mat.nu * p.mat.nu);
     const double exx = p.L[0][0], eyy = p.L[1][1], exy = 0.5 * (p.L[0][1] + p.L[1][0]);
     const double w = 0.5 * (p.L[0][1] - p.L[1][0]), ev = exx + eyy;
     const double rxx = 2 * w * p.s.xy, ryy = -2 * w * p.s.xy, rxy = w * (p.s.yy - p.s.xx);
-    const ConstitutiveStress lin{p.s.xx + dt * (rxx + 2 * G * (exx - ev / 3) + K * ev),
-                                 p.s.yy + dt * (ryy + 2 * G * (eyy - ev / 3) + K * ev),
+    const ConstitutiveStress lin{p.s.xx + dt * (rxx + 2 * G * exx + lameStar * ev),
+                                 p.s.yy + dt * (ryy + 2 * G * eyy + lameStar * ev),
                                  p.s.xy + dt * (rxy + 2 * G * exy)};
     // The exact rotation differs from its forward-Euler form by at most (2 w dt)^2 R (header of
     // the kernel, step 2); the rest is rounding.
@@ -423,8 +434,9 @@ TEST_P(ConstitutiveTest, RigidRotationIsObjective) {
 }
 
 TEST_P(ConstitutiveTest, UniaxialCompressionYieldsAtDruckerPragerStrength) {
-  // sigma_zz = 0 and L = diag(-e, nu* e), nu* = lambda / (lambda + 2G), keep sigma_yy = 0 while
-  // elastic: sigma_xx = -E* e t. Drucker-Prager then yields at |sigma_xx| = k_c / (1/sqrt3 -
+  // sigma_zz = 0 and L = diag(-e, nu e) keep sigma_yy = 0 while elastic: sigma_xx = -E e t (plane
+  // stress: the bar law of Hooke, E and nu themselves; E* and nu* below are computed from G and
+  // lambda* = 2G lambda / (lambda + 2G) as the kernel does, and equal E and nu). Drucker-Prager then yields at |sigma_xx| = k_c / (1/sqrt3 -
   // alpha_phi) (I1 = sigma_xx, sqrt(J2) = |sigma_xx| / sqrt3). The increment per step is set so the
   // strength lies at 500.5 increments: the first yielding step must be step 501.
   const double dt = dev(1e-4);
@@ -435,7 +447,8 @@ TEST_P(ConstitutiveTest, UniaxialCompressionYieldsAtDruckerPragerStrength) {
       Particle p;
       p.mat = {2e7, 0.3, phiDeg * kDeg, c, 0.0};
       p.c0 = c;
-      const double G = shearModulus(p.mat), lame = bulkModulus(p.mat) - 2.0 * G / 3.0;
+      const double G = shearModulus(p.mat), lame3 = bulkModulus(p.mat) - 2.0 * G / 3.0;
+      const double lame = 2.0 * G * lame3 / (lame3 + 2.0 * G);
       const double nuStar = lame / (lame + 2.0 * G), eStar = 4.0 * G * (lame + G) / (lame + 2.0 * G);
       const double sigmaU = kcOf(c, p.mat.phi) / (1.0 / std::sqrt(3.0) - alphaPhi(p.mat.phi));
       const double e = sigmaU / 500.5 / (eStar * dt);

@@ -85,9 +85,25 @@ double yield3(const Mat3& s, const Constants& k) {
   return k.alpha * trace(s) + std::sqrt(0.5 * contract(dev, dev)) - k.kc;
 }
 
-/// The elastic operator D : X = 2G dev(X) + K tr(X) I.
+/// The 3D elastic operator D : X = 2G dev(X) + K tr(X) I.
 Mat3 elastic(const Mat3& x, const Constants& k) {
   return add(scale(deviator(x), 2.0 * k.G), identity3(), k.K * trace(x));
+}
+
+/// The plane-stress response to an in-plane strain (rate) X: D : X' where X' is X with its zz entry
+/// replaced by the vertical strain that keeps (D : X')_zz = 0, found here by solving that linear
+/// equation in X'_zz numerically (the vertical stress is prescribed; the kernel uses the closed
+/// form lambda* = 2G lambda / (lambda + 2G) instead).
+Mat3 elasticPlaneStress(const Mat3& x, const Constants& k) {
+  Mat3 a = x, b = x;
+  a[2][2] = 0.0;
+  b[2][2] = 1.0;
+  const double za = elastic(a, k)[2][2], zb = elastic(b, k)[2][2];  // (D : X')_zz is affine in X'_zz
+  Mat3 c = x;
+  c[2][2] = -za / (zb - za);
+  Mat3 out = elastic(c, k);
+  out[2][2] = 0.0;  // zero up to rounding
+  return out;
 }
 
 /// Largest x in [lo, hi] with fn(x) <= 0, for fn increasing across one sign change in [lo, hi]
@@ -155,7 +171,7 @@ ConstitutiveStep referenceStressUpdate(const ConstitutiveStress& s0, const doubl
   Q[0][1] = std::sin(angle);
   Q[1][0] = -std::sin(angle);
   Mat3 trial = mul(mul(Q, stress3(s0, szz)), transpose(Q));
-  trial = add(trial, elastic(rate, k), dt);
+  trial = add(trial, elasticPlaneStress(rate, k), dt);
   trial[2][2] = szz;  // the vertical stress is prescribed, not integrated
   const double f = yield3(trial, k);
   out.trialYield = f;
@@ -171,12 +187,15 @@ ConstitutiveStep referenceStressUpdate(const ConstitutiveStress& s0, const doubl
     dfds = add(dfds, s, 0.5 / sqJ2);
     dgds = add(dgds, s, 0.5 / sqJ2);
   }
-  const Mat3 flow = elastic(dgds, k);  // D : dg/dsigma
+  const Mat3 flow = elasticPlaneStress(dgds, k);  // the in-plane stress rate of a plastic strain rate dg/dsigma
   out.dlambda = f / contract(dfds, flow);
-  // Volumetric part of the flow times dlambda; the deviatoric part removes at most all of s.
-  const double volume = trace(flow) / 3.0 * out.dlambda;
+  // The flow is G s / sqrt(J2) plus an in-plane isotropic part; that part times dlambda is removed,
+  // and of s at most all of it.
+  Mat3 iso = flow;
+  if (sqJ2 > 0.0) iso = add(iso, s, -k.G / sqJ2);
+  iso[2][2] = 0.0;
   const double devShare = sqJ2 > 0.0 ? std::min(1.0, k.G * out.dlambda / sqJ2) : 1.0;
-  Mat3 corrected = add(add(trial, identity3(), -volume), s, -devShare);
+  Mat3 corrected = add(add(trial, iso, -out.dlambda), s, -devShare);
   out.stress = remap(inPlane(corrected), szz, k, true);
   return out;
 }

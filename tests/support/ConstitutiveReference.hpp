@@ -8,10 +8,12 @@
 //   J2 = 1/2 s:s;
 // - the Jaumann rotation is the matrix product Q sigma Q^T with Q = exp(w dt), built from the
 //   angle w_xy dt;
-// - the elastic increment is dt (2G dev(eps') + K tr(eps') I) of the 3D tensor (eps'_zz = 0), of
-//   which the in-plane components are kept;
-// - the plastic multiplier is f* / (df/dsigma : D : dg/dsigma) with the double contraction
-//   evaluated numerically from the tensors (not the closed form 9 alpha alpha_psi K + G);
+// - plane stress: the elastic increment is dt (2G dev(eps') + K tr(eps') I) of the 3D tensor whose
+//   vertical entry eps'_zz is solved for numerically so that the vertical stress does not change
+//   (not the kernel's closed form lambda*), of which the in-plane components are kept;
+// - the plastic multiplier is f* / (df/dsigma : D_ps : dg/dsigma), D_ps that same plane-stress
+//   response, with the double contraction evaluated numerically from the tensors (not the
+//   kernel's closed form h);
 // - the remapping finds the in-plane tension and compression limits and the scale factor of the
 //   deviator by bisection on the yield function itself (no closed forms), so it checks the
 //   kernel's algebra rather than repeating it.

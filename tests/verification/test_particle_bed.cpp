@@ -68,6 +68,7 @@ struct Channel {
     particles.material.cohesion = {1e7};  // strong: the block stays one rigid body
     particles.settings.youngModulus = 1e7;
     particles.settings.fluidDensity = kRhoF;
+    particles.settings.edgeWalls = true;  // the raster edge is a wall to the grid (above): to the particles too
     particles.fluid = settings.debris;
   }
 };
