@@ -11,7 +11,8 @@ numerical choice at a time, never the material:
   - the artificial viscosity (alpha_Pi, beta_Pi): the paper's (1, 1), Bui et al.'s (0.1, 0), none (0, 0);
   - the cohesion c of scenario B across its regime boundary (60-120 kPa);
   - particles per cell (4, the scenes' value; 9) and the smoothing length (h = 1 and 1.5 cells).
-Only the Python standard library is needed (the particle layer is read with sqlite3). Results go to
+The particle layers are read with sqlite3; with GDAL's Python bindings (osgeo) the deposit's extent
+is given from the DEM's west edge (the scenes' x), else in world coordinates. Results go to
 WORK_DIR/regime_study.csv and a Markdown table on standard output. Each run takes 20-120 s on two
 PoCL cores.
 """
@@ -85,6 +86,16 @@ def read_points(gpkg):
     return out
 
 
+def x_origin(dem):
+    """The DEM's west edge in world coordinates (0 without GDAL's Python bindings)."""
+    try:
+        from osgeo import gdal
+    except ImportError:
+        return 0.0
+    ds = gdal.Open(str(dem))
+    return ds.GetGeoTransform()[0] if ds else 0.0
+
+
 def run_one(talus, work, name, scene, keys):
     d = work / name
     d.mkdir(parents=True, exist_ok=True)
@@ -109,7 +120,8 @@ def run_one(talus, work, name, scene, keys):
     mass = sum(p[1] for p in pts)
     broken = sum(p[1] for p in pts if p[2] < BROKEN) / mass if mass > 0 else float("nan")
     mean_frac = sum(p[1] * p[2] for p in pts) / mass if mass > 0 else float("nan")
-    xs = sorted(p[0] for p in pts)
+    x0 = x_origin(src / "dem.tif")
+    xs = sorted(p[0] - x0 for p in pts)
     peak_ke = 0.0
     with open(d / "output" / "diagnostics.csv") as fh:
         for row in csv.DictReader(fh):
