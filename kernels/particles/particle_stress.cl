@@ -71,14 +71,18 @@ __kernel void particle_stress(__constant const ParticleParams* p, __constant con
     m11 -= aj * dy * gw.y;
   }
   // C = (M^2 + d^2 I)^-1 M with d = 0.01 (header, point 1); M symmetric: m01 = m10 up to rounding.
+  // With P = det M it is C = [P tr(M) I + (d^2 - P) M] / D,
+  // D = det(M^2 + d^2 I) = P^2 + d^2 (m00^2 + m11^2 + 2 m01^2) + d^4 > 0, every term formed without
+  // cancelling products of M^2's size (the expanded det(M^2 + d^2 I) cancels terms of tr(M)^4, which
+  // in float left D <= 0 for a nearly rank-1 M of size 75 and made C infinite).
   real i00, i01, i11;
   {
     const real mo = (real)0.5 * (m01 + m10), d2 = (real)1e-4;
-    const real q00 = m00 * m00 + mo * mo + d2, q01 = mo * (m00 + m11), q11 = m11 * m11 + mo * mo + d2;
-    const real qdet = q00 * q11 - q01 * q01;  // >= d^4 > 0
-    i00 = (q11 * m00 - q01 * mo) / qdet;
-    i01 = (q11 * mo - q01 * m11) / qdet;
-    i11 = (q00 * m11 - q01 * mo) / qdet;
+    const real P = m00 * m11 - mo * mo;
+    const real D = P * P + d2 * (m00 * m00 + m11 * m11 + (real)2 * mo * mo) + d2 * d2;
+    i00 = (P * m11 + d2 * m00) / D;
+    i01 = (d2 - P) * mo / D;
+    i11 = (P * m00 + d2 * m11) / D;
   }
   const real i10 = i01;
   const real L00 = g00 * i00 + g01 * i10, L01 = g00 * i01 + g01 * i11;

@@ -3,7 +3,9 @@
 //  - ParticleFragments.APairFlyingApartThinsNoMoreThanItsSeparationGrows: two particles moving
 //    apart are a segment of material being stretched; the continuity equation then lets each
 //    particle's area grow at most as the segment's length, A/A0 <= r/r0, and a lone particle keeps
-//    its area and thickness once the other has left its support.
+//    its area and thickness once the other has left its support;
+//  - ParticleFragments.ANeighbourThatStandsForALargeAreaKeepsTheGradientFiniteInFloat: the damped
+//    inverse stays finite in float for a nearly rank-1 correction matrix of large size.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -75,4 +77,42 @@ TEST(ParticleFragments, APairFlyingApartThinsNoMoreThanItsSeparationGrows) {
               s.H[0], Hseparated, std::fabs(s.x[1] - s.x[0]), worst);
   EXPECT_GT(Hseparated, 0.0) << "the pair must separate within the run";
   EXPECT_LE(worst, 1.01);
+}
+
+// The damped inverse in float for a nearly rank-1 M of large size: a particle beside one neighbour
+// that stands for a large area (a stretched particle: 2e5 m^2; particles reached 8e4 m^2 on the avaKot
+// path) has M ~ 750 along their line and ~0 across it. Written as det(M^2 + d^2 I) expanded, the
+// float arithmetic cancels terms of 750^4 and leaves that determinant <= 0: C becomes infinite and the
+// particle's stress NaN. The kernel forms it from det M and the squares of M's entries instead.
+// Asserted: after one step (float) both particles' thickness and velocity are finite; the former
+// formula gives NaN velocities here.
+TEST(ParticleFragments, ANeighbourThatStandsForALargeAreaKeepsTheGradientFiniteInFloat) {
+  const Grid grid = Grid::make(40, 40, 5.0);
+  ParticleTerrain terrain;
+  terrain.mask.assign(grid.cells(), 1);
+  terrain.bed.assign(grid.cells(), 0.0);
+  SeededParticles seeded;
+  seeded.x = {100.0, 108.0};
+  seeded.y = {100.0, 100.5};
+  seeded.area = {2e5, 5.0};
+  seeded.volume = {16.0, 16.0};
+  seeded.mass = {3.2e4, 3.2e4};
+  seeded.cell = {static_cast<uint32_t>(grid.index(20, 20)), static_cast<uint32_t>(grid.index(21, 20))};
+  seeded.particleVolume = 16.0;
+  ParticleMaterial material;
+  material.density = {2000.0};
+  material.phi = {25 * 3.14159265358979323846 / 180.0};
+  material.delta = {0.0};
+  material.cohesion = {0.0};
+  ParticleSettings ps;
+  ParticleSolver solver(test::testContext(compute::Precision::Float), grid, terrain, ps);
+  solver.setParticles(seeded, material);
+  solver.setVelocities({-2.0, 2.0}, {0.0, 0.0});
+  solver.step(0.05);
+  const ParticleState s = solver.state();
+  ASSERT_EQ(s.size(), 2u);
+  for (std::size_t q = 0; q < 2; ++q) {
+    std::printf("particle %zu: H %.6g m, v (%.6g, %.6g) m/s\n", q, s.H[q], s.vx[q], s.vy[q]);
+    EXPECT_TRUE(std::isfinite(s.H[q]) && std::isfinite(s.vx[q]) && std::isfinite(s.vy[q])) << "particle " << q;
+  }
 }
