@@ -1,7 +1,8 @@
 // Internal accelerations of the particles (spec §5, OpenLISEM Hazard P.78 with P.83-P.86).
 // The stress term is the one the strain rate of particle_stress implies (variational consistency,
 // Bonet & Lok 1999): particle_stress takes L_i = sum_j A_j (v_j - v_i) (x) C_i g_ij with
-// g_ij = grad_i W_ij and C_i = M_i^-1 its kernel-gradient correction (symmetric), so the stress power
+// g_ij = grad_i W_ij and C_i its kernel-gradient correction (symmetric; `corr`, the damped inverse of
+// M_i, particle_stress.cl), so the stress power
 // sum_i A_i N_i : L_i is minus the power of the forces
 //   F_i = A_i sum_j A_j (N_i C_i + N_j C_j) g_ij,   dv_i/dt = F_i / m_i,
 // each particle's stress paired with its own correction. F_ij = -F_ji (g_ji = -g_ij), so momentum is
@@ -32,16 +33,16 @@ __kernel void particle_forces(__constant const ParticleParams* p, __constant con
                               __global const real* x, __global const real* y, __global const real* vx,
                               __global const real* vy, __global const real* m, __global const real* A, __global const real* rhoA,
                               __global const real* Nxx, __global const real* Nyy, __global const real* Nxy,
-                              __global const real* Minv, __global const real* Rart, __global real* ax, __global real* ay,
+                              __global const real* corr, __global const real* Rart, __global real* ax, __global real* ay,
                               __global real* tally) {
   const int i = get_global_id(0);
   if (i >= p->count) return;
   const real h = p->h, r2max = (real)4 * h * h;
   const real xi = x[i], yi = y[i], vxi = vx[i], vyi = vy[i];
-  const int cap = p->count;  // stride of the Minv and Rart rows
+  const int cap = p->count;  // stride of the corr and Rart rows
   const real rixx = Rart[i], riyy = Rart[cap + i], rixy = Rart[2 * cap + i];
   const int ri_on = rixx != (real)0 || riyy != (real)0 || rixy != (real)0;
-  const real ai00 = Minv[i], ai01 = Minv[cap + i], ai11 = Minv[2 * cap + i];
+  const real ai00 = corr[i], ai01 = corr[cap + i], ai11 = corr[2 * cap + i];
   const real nixx = Nxx[i], niyy = Nyy[i], nixy = Nxy[i];
   real accx = 0, accy = 0;  // artificial stress, sum_j m_j f^n R_ij . G_ij
   real avx = 0, avy = 0;    // artificial viscosity, -sum_j m_j Pi_ij G_ij
@@ -53,7 +54,7 @@ __kernel void particle_forces(__constant const ParticleParams* p, __constant con
     const real2 g0 = sph_grad((real2)(dx, dy), h);
     // Stress term: N_i C_i g + N_j C_j g.
     const real ux = ai00 * g0.x + ai01 * g0.y, uy = ai01 * g0.x + ai11 * g0.y;
-    const real bj00 = Minv[j], bj01 = Minv[cap + j], bj11 = Minv[2 * cap + j];
+    const real bj00 = corr[j], bj01 = corr[cap + j], bj11 = corr[2 * cap + j];
     const real wx = bj00 * g0.x + bj01 * g0.y, wy = bj01 * g0.x + bj11 * g0.y;
     const real njxx = Nxx[j], njyy = Nyy[j], njxy = Nxy[j];
     fx += A[j] * (nixx * ux + nixy * uy + njxx * wx + njxy * wy);

@@ -7,7 +7,7 @@
 //    velocity fields also at free edges. M is symmetric and positive semi-definite, I for a full
 //    support, and singular for a particle with fewer than three neighbours in general position (a
 //    fragment, a pair flying apart). C is its damped inverse (M^2 + d^2 I)^-1 M, d = 0.01: M^-1 to
-//    1e-4 where the support is at least half full, and where it is not, the exact finite difference
+//    1e-4 for a full support (eigenvalues ~1), 4e-4 where it is half full; where it is not, the exact finite difference
 //    along the directions the neighbours span, tapering to 0 as they leave (a lone particle has no
 //    strain rate). (Until 2026-12 a particle with det M <= 1e-3 took C = I: its L then scaled with
 //    its neighbours' areas A_j, whose growth dA/dt = A div v fed back on itself; in the paper's
@@ -44,7 +44,7 @@ __kernel void particle_stress(__constant const ParticleParams* p, __constant con
                               __global const real* phi, __global const real* delta, __global real* sxx,
                               __global real* syy, __global real* sxy, __global real* coh,
                               __global const real* coh0, __global real* plastic, __global real* Nxx,
-                              __global real* Nyy, __global real* Nxy, __global real* Minv, __global real* divergence,
+                              __global real* Nyy, __global real* Nxy, __global real* corr, __global real* divergence,
                               __global real* rhoA, __global real* Rart, const real dt) {
   const int i = get_global_id(0);
   if (i >= p->count) return;
@@ -105,10 +105,10 @@ __kernel void particle_stress(__constant const ParticleParams* p, __constant con
   Nyy[i] = Hi * (s.syy + lat);
   Nxy[i] = Hi * s.sxy;
   // The correction matrix for the momentum equation (M is symmetric: one off-diagonal term).
-  const int cap = p->count;  // stride of the Minv rows
-  Minv[i] = i00;
-  Minv[cap + i] = i01;
-  Minv[2 * cap + i] = i11;
+  const int cap = p->count;  // stride of the corr rows
+  corr[i] = i00;
+  corr[cap + i] = i01;
+  corr[2 * cap + i] = i11;
   divergence[i] = L00 + L11;  // for the area update dA/dt = A div v (particle_integrate)
   // The artificial stress of the new N (artificial_stress.cl), once per particle for particle_forces.
   const real ri2 = rhoAi * rhoAi;

@@ -31,7 +31,6 @@ struct ParticleSettings {
   bool nodataWalls = true;
 
   double shearModulus() const { return youngModulus / (2 * (1 + poisson)); }
-  double bulkModulus() const { return youngModulus / (3 * (1 - 2 * poisson)); }
   /// The in-plane bulk modulus of plane stress, lambda* + G = E / (2 (1 - nu)) [Pa]
   /// (kernels/particles/constitutive.cl, step 3).
   double planeBulkModulus() const { return youngModulus / (2 * (1 - poisson)); }

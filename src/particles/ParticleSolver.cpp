@@ -272,7 +272,7 @@ void ParticleSolver::setParticles(const SeededParticles& seeded, const ParticleM
   make(Nyy_, "particle Nyy"), make(Nxy_, "particle Nxy"), make(ax_, "particle ax"), make(ay_, "particle ay");
   tally_ = compute::RealBuffer(ctx_, 5 * capacity_, "particle sub-step tallies");
   speed_ = compute::RealBuffer(ctx_, 5 * capacity_, "particle totals");
-  Minv_ = compute::RealBuffer(ctx_, 3 * capacity_, "particle gradient correction");
+  gradCorrection_ = compute::RealBuffer(ctx_, 3 * capacity_, "particle gradient correction");
   artStress_ = compute::RealBuffer(ctx_, 3 * capacity_, "particle artificial stress");
   if (n == 0) {
     writeParams();
@@ -420,7 +420,7 @@ bool ParticleSolver::sortAndEvaluateStress(double ds) {
   if (count_ == 0) return false;
   const compute::Range global{count_};
   stress_.bind(params_, ng.params(), ng.cellStart(), ng.cellEnd(), x_, y_, vx_, vy_, V_, A_, H_, rho_, gn_, phi_, delta_, sxx_,
-               syy_, sxy_, coh_, coh0_, plastic_, Nxx_, Nyy_, Nxy_, Minv_, div_, rhoA_, artStress_,
+               syy_, sxy_, coh_, coh0_, plastic_, Nxx_, Nyy_, Nxy_, gradCorrection_, div_, rhoA_, artStress_,
                compute::RealArg{ds});
   stress_.launch(global, kParticleGroup, "particle_stress");
   return true;
@@ -430,7 +430,7 @@ void ParticleSolver::subStep(double ds) {
   if (!sortAndEvaluateStress(ds)) return;
   NeighbourGrid& ng = *neighbours_;
   const compute::Range global{count_};
-  forces_.bind(params_, ng.params(), ng.cellStart(), ng.cellEnd(), x_, y_, vx_, vy_, m_, A_, rhoA_, Nxx_, Nyy_, Nxy_, Minv_,
+  forces_.bind(params_, ng.params(), ng.cellStart(), ng.cellEnd(), x_, y_, vx_, vy_, m_, A_, rhoA_, Nxx_, Nyy_, Nxy_, gradCorrection_,
                artStress_, ax_, ay_, tally_);
   forces_.launch(global, kParticleGroup, "particle_forces");
   integrate_.bind(params_, mask_, bed_, gradX_, gradY_, gn_, limitedSlope_, x_, y_, vx_, vy_, m_, delta_, ax_, ay_, A_, div_, V_, rho_, Vf_,

@@ -172,7 +172,7 @@ class ParticleSolver {
   compute::RealBuffer cellU_, cellV_;  ///< the cells' confined-phase velocity after the exchange (PIC share only)
   std::vector<double> gnHost_;
   // Per sub-step scratch (not reordered).
-  compute::RealBuffer rhoA_, H_, Nxx_, Nyy_, Nxy_, Minv_, div_, ax_, ay_, speed_;
+  compute::RealBuffer rhoA_, H_, Nxx_, Nyy_, Nxy_, gradCorrection_, div_, ax_, ay_, speed_;
   /// Rows of count_ entries per sub-step: outflow mass, then the artificial viscosity's and the artificial
   /// stress's acceleration (x, y) from particle_forces, which particle_integrate turns into their work.
   compute::RealBuffer tally_;

@@ -126,15 +126,19 @@ def run_one(talus, work, name, scene, keys):
     # Broken share while the whole block is still on the slope: the last report layer in which no
     # particle has passed the slope foot (regime B must be intact there).
     on_slope, t_slope = float("nan"), float("nan")
-    m = re.search(r"^Timestep=([0-9.eE+-]+)", text, re.M)  # the report interval [s]
-    report_s = float(m.group(1)) if m else float("nan")
+    # Report index -> time, as the run wrote it (series/index.csv, as tools/validation/report.py reads it).
+    times = {}
+    index_csv = d / "output" / "series" / "index.csv"
+    if index_csv.exists():
+        with open(index_csv) as fh:
+            times = {int(r["index"]): float(r["time_s"]) for r in csv.DictReader(fh)}
     for layer in sorted((d / "output" / "particles").glob("particles_*.gpkg")):
         lp = read_points(layer)
         lm = sum(p[1] for p in lp)
         if not lp or max(p[0] - x0 for p in lp) >= SLOPE_FOOT_X or lm <= 0:
             break
         on_slope = sum(p[1] for p in lp if p[2] < BROKEN) / lm
-        t_slope = float(layer.stem.split("_")[1]) * report_s
+        t_slope = times.get(int(layer.stem.split("_")[1]), float("nan"))
     peak_ke = 0.0
     with open(d / "output" / "diagnostics.csv") as fh:
         for row in csv.DictReader(fh):
