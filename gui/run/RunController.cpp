@@ -118,10 +118,14 @@ void RunController::onPrepared() {
   cb.onEnd = [this](const sim::RunOutcome& o) { onEnd(o); };
   control_ = std::make_unique<sim::RunControl>(*sim_, cb);
   emit prepared();
+  // The initial state, taken before the worker starts (RunControl::post runs a job at once while no
+  // worker is alive): every live series begins at the start time. Requested after the start, it
+  // raced with the first steps and, on a short run, was taken at the end instead (a probe then
+  // held one point).
+  requestSnapshot();
   control_->start(startPaused_);
   setState(startPaused_ ? State::Paused : State::Running);
   snapshotTimer_.start();
-  requestSnapshot();
 }
 
 void RunController::onStep(const sim::Progress& p) {
@@ -180,7 +184,16 @@ void RunController::onEnd(const sim::RunOutcome& outcome) {
     }
     emit progress(last_);
     snapshotTimer_.stop();
-    requestSnapshot();  // the final state (the worker has ended: taken right here)
+    // The final state, taken and delivered here (the worker has ended) before the state turns
+    // Ended, so whoever waits for Ended sees it (queued, it arrived after Ended).
+    snapshotPending_ = false;
+    if (view_ && sim_) {
+      try {
+        deliverSnapshot(takeSnapshot(*sim_));
+      } catch (const std::exception&) {
+        // A failed run's state may not pack (RunControl::drainAndEnd); the log says why it failed.
+      }
+    }
     QString message;
     const sim::RunSummary& s = outcome.summary;
     switch (outcome.kind) {
@@ -254,17 +267,26 @@ void RunController::restart(const io::RunConfig& config) {
   start(config, true, false);
 }
 
+std::shared_ptr<sim::ViewSnapshot> RunController::takeSnapshot(sim::Simulation& sim) {
+  auto s = std::make_shared<sim::ViewSnapshot>(view_->snapshot({}, deviceSnapshots_, kGlNoData));
+  s->steps = sim.steps();
+  return s;
+}
+
+void RunController::deliverSnapshot(std::shared_ptr<const sim::ViewSnapshot> s) {
+  snapshotSteps_ = s->steps;
+  emit snapshotReady(std::move(s));
+}
+
 void RunController::requestSnapshot() {
   if (!control_ || !view_ || snapshotPending_) return;
   snapshotPending_ = true;
   control_->post([this](sim::Simulation& sim) {
-    auto s = std::make_shared<sim::ViewSnapshot>(view_->snapshot({}, deviceSnapshots_, kGlNoData));
-    s->steps = sim.steps();
+    auto s = takeSnapshot(sim);
     QMetaObject::invokeMethod(this, [this, s, gen = int(generation_)] {
       if (gen != generation_) return;
       snapshotPending_ = false;
-      snapshotSteps_ = s->steps;
-      emit snapshotReady(s);
+      deliverSnapshot(s);
     }, Qt::QueuedConnection);
   });
 }

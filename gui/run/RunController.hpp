@@ -88,6 +88,10 @@ class RunController : public QObject {
   void onStep(const sim::Progress& p);
   void onEnd(const sim::RunOutcome& outcome);
   void teardown();
+  /// A snapshot of every layer of `sim` (on the thread that may touch it: the worker, or any while
+  /// no worker runs), and its delivery through snapshotReady (GUI thread).
+  std::shared_ptr<sim::ViewSnapshot> takeSnapshot(sim::Simulation& sim);
+  void deliverSnapshot(std::shared_ptr<const sim::ViewSnapshot> s);
 
   State state_ = State::Idle;
   std::unique_ptr<io::RunConfig> config_;
