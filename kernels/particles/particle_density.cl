@@ -1,15 +1,31 @@
 // Thickness and areal density of the particles (spec §5, P.74-P.75). Each particle stands for a
-// horizontal area A (set at seeding to dx^2 / particles per cell, then carried by the continuity
-// equation dA/dt = A div v in particle_integrate) and a confined volume V (constant). The thickness
-// is the Shepard-normalised kernel estimate
+// horizontal area A and a confined volume V (constant). The thickness is the Shepard-normalised
+// kernel estimate
 //   H_i = sum_j V_j W_ij / sum_j A_j W_ij   (j over the particles within 2h, i itself included),
 // and the areal density rhoA_i = rho_i H_i. For a layer of uniform thickness it is exact, at free
 // edges too. The plain sum rhoA_i = sum_j m_j W_ij of the spec is what this normalises: on the R2
 // layouts with h = 2 dp it scatters by +-15 % from particle to particle and sags at every edge, which
 // made an elastic bar ring 5 % slow and would drive spurious lateral pressure in a block at rest.
+//
+// The area follows the positions through the number density S_i = sum_j W_ij (i included):
+//   A_i = a_i / S_i,   a_i = A_i S_i at the first stress pass (A_i the seeded area), then constant.
+// This is the continuity equation dA/dt = A div v with the divergence in SPH's summation form,
+// div v_i = -(1/S_i) sum_j (v_i - v_j) . grad_i W_ij = -d(ln S_i)/dt (Monaghan 1992, Annu. Rev.
+// Astron. Astrophys. 30, section 2: SPH's continuity equation in this form is the time derivative of
+// the summation density), integrated exactly, so an area is a function of where the
+// particles are and cannot drift from its neighbours'. The anchor a_i takes away the kernel's
+// deficiency at free edges at the start (an edge particle's S is about half an interior one's, and
+// its a_i about twice): the seeded layer starts with its seeded areas, as before.
+// Until 2026-12-05 each particle integrated dA/dt = A div v with its own corrected strain rate
+// (particle_stress, L). That is exact for a resolved, smooth deformation, but each particle's errors
+// add up along its path and nothing pulls neighbours' areas back together: on real terrain (avaKot
+// at 5 m, docs/terrain_comparison.md) areas of 8e4 m^2 stood beside 0.014 m^2 (columns of 1 mm beside
+// 1 km) after 30 s, speeds reached 175 m/s and the run stopped with NaN. The summation form cannot
+// do that: a lone particle's area is at most a_i / W(0).
 // particle_stress.cl accumulates these sums in its own neighbour loop (one pass over the neighbours
-// for the thickness and the strain rate; a separate pass for the thickness alone cost a fifth of the
-// particle step), in the loop's fixed visiting order.
+// for the thickness, the number density and the strain rate; a separate pass for the thickness alone
+// cost a fifth of the particle step), in the loop's fixed visiting order; particle_integrate sets the
+// area for the next sub-step from this sub-step's S.
 #ifndef TALUS_PARTICLE_DENSITY_CL
 #define TALUS_PARTICLE_DENSITY_CL
 #include "common/real.cl"

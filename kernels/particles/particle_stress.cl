@@ -44,8 +44,9 @@ __kernel void particle_stress(__constant const ParticleParams* p, __constant con
                               __global const real* phi, __global const real* delta, __global real* sxx,
                               __global real* syy, __global real* sxy, __global real* coh,
                               __global const real* coh0, __global real* plastic, __global real* Nxx,
-                              __global real* Nyy, __global real* Nxy, __global real* corr, __global real* divergence,
-                              __global real* rhoA, __global real* Rart, const real dt) {
+                              __global real* Nyy, __global real* Nxy, __global real* corr, __global real* share,
+                              __global real* numberDensity, __global real* rhoA, __global real* Rart,
+                              const real dt) {
   const int i = get_global_id(0);
   if (i >= p->count) return;
   const real h = p->h, r2max = (real)4 * h * h;
@@ -53,10 +54,13 @@ __kernel void particle_stress(__constant const ParticleParams* p, __constant con
   real g00 = 0, g01 = 0, g10 = 0, g11 = 0;  // sum A_j (v_j - v_i) (x) grad W
   real m00 = 0, m01 = 0, m10 = 0, m11 = 0;  // sum A_j (x_j - x_i) (x) grad W
   ThicknessSums th = {0, 0};
+  real S = 0;  // the number density sum_j W_ij, i included (particle_density.cl)
   FOR_EACH_NEARBY_PARTICLE(ng, cell_start, cell_end, xi, yi, j) {
     const real dx = xi - x[j], dy = yi - y[j], r2 = dx * dx + dy * dy;
     if (r2 >= r2max) continue;
-    thickness_add(&th, V[j], A[j], sph_w(sqrt(r2), h));
+    const real w = sph_w(sqrt(r2), h);
+    S += w;
+    thickness_add(&th, V[j], A[j], w);
     if (j == (uint)i) continue;
     const real2 gw = sph_grad((real2)(dx, dy), h);
     const real aj = A[j];  // the area the neighbour stands for
@@ -109,7 +113,10 @@ __kernel void particle_stress(__constant const ParticleParams* p, __constant con
   corr[i] = i00;
   corr[cap + i] = i01;
   corr[2 * cap + i] = i11;
-  divergence[i] = L00 + L11;  // for the area update dA/dt = A div v (particle_integrate)
+  // The area's anchor (particle_density.cl): set once, where the particle's area is still the
+  // seeding's (or a checkpoint's from before the anchor was kept), then carried with the particle.
+  if (!(share[i] > (real)0)) share[i] = A[i] * S;
+  numberDensity[i] = S;  // particle_integrate's new area: A = share / S
   // The artificial stress of the new N (artificial_stress.cl), once per particle for particle_forces.
   const real ri2 = rhoAi * rhoAi;
   const real4 R = p->eps_art > (real)0

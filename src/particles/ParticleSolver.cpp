@@ -17,27 +17,43 @@
 namespace talus::particles {
 namespace {
 
-/// Centred bed gradient per cell (one-sided next to nodata cells and the raster edge, 0 where a
-/// cell has no valid neighbour along a direction); nodata cells get 0.
-void bedGradient(const Grid& g, const std::vector<double>& bed, const std::vector<uint8_t>& mask,
-                 std::vector<double>& gx, std::vector<double>& gy) {
-  gx.assign(g.cells(), 0.0);
-  gy.assign(g.cells(), 0.0);
-  auto valid = [&](int i, int j) { return i >= 0 && j >= 0 && i < g.nx && j < g.ny && mask[g.index(i, j)]; };
-  for (int j = 0; j < g.ny; ++j)
-    for (int i = 0; i < g.nx; ++i) {
-      if (!valid(i, j)) continue;
-      const double b0 = bed[g.index(i, j)];
-      auto diff = [&](int di, int dj) {
-        const bool m = valid(i - di, j - dj), p = valid(i + di, j + dj);
-        if (m && p) return (bed[g.index(i + di, j + dj)] - bed[g.index(i - di, j - dj)]) / (2 * g.dx);
-        if (p) return (bed[g.index(i + di, j + dj)] - b0) / g.dx;
-        if (m) return (b0 - bed[g.index(i - di, j - dj)]) / g.dx;
-        return 0.0;
-      };
-      gx[g.index(i, j)] = diff(1, 0);
-      gy[g.index(i, j)] = diff(0, 1);
+/// The cell-centre elevations of the particles' bed surface (particle_common.cl, bed_surface_gradient):
+/// the DEM's, and in each nodata cell the mean of its nearest domain cells (rings of 4-neighbours, filled
+/// outwards), so the surface near a nodata hole or edge continues flat instead of falling to a placeholder.
+std::vector<double> surfaceElevations(const Grid& g, const std::vector<double>& bed, const std::vector<uint8_t>& mask) {
+  std::vector<double> z(g.cells(), 0.0);
+  std::vector<uint8_t> known(g.cells(), 0);
+  std::vector<std::size_t> front;
+  for (std::size_t k = 0; k < g.cells(); ++k)
+    if (mask[k]) z[k] = bed[k], known[k] = 1, front.push_back(k);
+  const int di[4] = {1, -1, 0, 0}, dj[4] = {0, 0, 1, -1};
+  while (!front.empty()) {
+    std::vector<std::size_t> next;
+    for (std::size_t k : front) {
+      const int i = static_cast<int>(k % g.nx), j = static_cast<int>(k / g.nx);
+      for (int d = 0; d < 4; ++d) {
+        const int a = i + di[d], b = j + dj[d];
+        if (a < 0 || b < 0 || a >= g.nx || b >= g.ny || known[g.index(a, b)]) continue;
+        known[g.index(a, b)] = 2;  // in this ring: its value is the mean of its known neighbours
+        next.push_back(g.index(a, b));
+      }
     }
+    std::sort(next.begin(), next.end());
+    next.erase(std::unique(next.begin(), next.end()), next.end());
+    for (std::size_t k : next) {
+      const int i = static_cast<int>(k % g.nx), j = static_cast<int>(k / g.nx);
+      double sum = 0;
+      int count = 0;
+      for (int d = 0; d < 4; ++d) {
+        const int a = i + di[d], b = j + dj[d];
+        if (a >= 0 && b >= 0 && a < g.nx && b < g.ny && known[g.index(a, b)] == 1) sum += z[g.index(a, b)], ++count;
+      }
+      z[k] = sum / count;
+    }
+    for (std::size_t k : next) known[k] = 1;
+    front.swap(next);
+  }
+  return z;
 }
 
 template <class Real>
@@ -98,23 +114,14 @@ ParticleSolver::ParticleSolver(compute::Context& ctx, const Grid& grid, const Pa
   flow::FlowSettings fs;
   fs.slopeCorrection = terrain.slopeCorrection;
   const flow::SlopeGravity sg = flow::computeSlopeGravity(grid, terrain.bed, terrain.mask, fs);
-  std::vector<double> gx, gy;
-  bedGradient(grid, terrain.bed, terrain.mask, gx, gy);
   std::vector<double> gn = sg.gn;
   for (std::size_t k = 0; k < n; ++k)
     if (!terrain.mask[k]) gn[k] = kGravity;
   mask_ = compute::Buffer<uint8_t>(ctx, n, "particle terrain mask");
   mask_.write(terrain.mask);
   bed_ = compute::RealBuffer(ctx, n, "particle bed elevation");
-  std::vector<double> bed = terrain.bed;
-  for (std::size_t k = 0; k < n; ++k)
-    if (!terrain.mask[k]) bed[k] = 0.0;  // never read: a nodata face is a wall or an outlet (particle_integrate.cl)
-  bed_.upload(bed);
-  gradX_ = compute::RealBuffer(ctx, n, "bed gradient x");
-  gradY_ = compute::RealBuffer(ctx, n, "bed gradient y");
+  bed_.upload(surfaceElevations(grid, terrain.bed, terrain.mask));
   gn_ = compute::RealBuffer(ctx, n, "particle g_n");
-  gradX_.upload(gx);
-  gradY_.upload(gy);
   limitedSlope_ = compute::RealBuffer(ctx, 2 * n, "particle limited bed slope");
   {
     std::vector<double> ls = sg.slopeX;
@@ -259,7 +266,8 @@ void ParticleSolver::setParticles(const SeededParticles& seeded, const ParticleM
   count_ = n;
   diag_.viscousDissipation = diag_.artificialStressWork = 0;
   auto make = [&](compute::RealBuffer& b, const char* label) { b = compute::RealBuffer(ctx_, capacity_, label); };
-  make(A_, "particle area"), make(V_, "particle volume"), make(div_, "particle divergence");
+  make(A_, "particle area"), make(V_, "particle volume"), make(numberDensity_, "particle number density");
+  make(areaShare_, "particle area share");
   make(fsc0_, "particle initial structured fraction"), make(ffc0_, "particle initial confined fraction");
   make(Vf_, "particle confined fluid"), make(Vf0_, "particle initial confined fluid"), make(released_, "particle released fluid");
   make(fluidDepth_, "fluid depth at the particles");
@@ -280,7 +288,7 @@ void ParticleSolver::setParticles(const SeededParticles& seeded, const ParticleM
     return;
   }
   const std::vector<double> zero(n, 0.0);
-  A_.upload(seeded.area), V_.upload(seeded.volume);
+  A_.upload(seeded.area), V_.upload(seeded.volume), areaShare_.upload(zero);  // share 0: set at the first stress pass
   fsc0_.upload(material.structured.empty() ? std::vector<double>(n, 1.0) : perParticle(material.structured, n, "structured"));
   ffc0_.upload(material.confined.empty() ? std::vector<double>(n, 1.0) : perParticle(material.confined, n, "confined"));
   const std::vector<double> vf = material.fluidVolume.empty() ? zero : perParticle(material.fluidVolume, n, "fluid volume");
@@ -355,7 +363,7 @@ const std::vector<compute::RealBuffer ParticleSolver::*>& ParticleSolver::stateF
       &S::x_,   &S::y_,   &S::vx_,  &S::vy_,     &S::m_,       &S::rho_,  &S::phi_,     &S::delta_,
       &S::coh_, &S::coh0_, &S::sxx_, &S::syy_,   &S::sxy_,     &S::plastic_, &S::A_,    &S::V_,
       &S::fsc0_, &S::ffc0_, &S::Vf_, &S::Vf0_,   &S::released_, &S::fluidDepth_,
-      &S::liftOff_};
+      &S::liftOff_, &S::areaShare_};
   return fields;
 }
 
@@ -389,9 +397,19 @@ void ParticleSolver::restoreState(const std::vector<char>& bytes) {
   const std::size_t unit = compute::realSize(ctx_.precision());
   double energies[2] = {0, 0};
   if (bytes.size() >= sizeof count + sizeof time_) std::memcpy(&count, bytes.data(), sizeof count);
-  const std::size_t fieldBytes = fields.size() * count * unit, head = sizeof count + sizeof time_;
-  const bool withEnergies = bytes.size() == head + sizeof energies + fieldBytes;
-  if ((!withEnergies && bytes.size() != head + fieldBytes) || count > capacity_)
+  // Three layouts restore (newest first): the energies and every field; the energies and every field
+  // but the last (the area share, before 2026-12-05); neither (before the energies were tallied).
+  // A missing area share is set again from the restored areas at the first stress pass.
+  const std::size_t head = sizeof count + sizeof time_, all = fields.size() * count * unit, older = all - count * unit;
+  std::size_t stored = 0;
+  bool withEnergies = true;
+  if (bytes.size() == head + sizeof energies + all)
+    stored = fields.size();
+  else if (bytes.size() == head + sizeof energies + older)
+    stored = fields.size() - 1;
+  else if (bytes.size() == head + older)
+    stored = fields.size() - 1, withEnergies = false;
+  if (stored == 0 || count > capacity_)
     throw InputError("checkpoint: the particle state does not fit this run's particles (" + std::to_string(capacity_) +
                      " seeded, " + compute::precisionName(ctx_.precision()) + ")");
   std::memcpy(&time_, bytes.data() + sizeof count, sizeof time_);
@@ -400,8 +418,13 @@ void ParticleSolver::restoreState(const std::vector<char>& bytes) {
   diag_.artificialStressWork = energies[1];
   count_ = count;
   std::size_t at = head + (withEnergies ? sizeof energies : 0);
-  for (auto f : fields) {
-    if (count) (this->*f).raw().writeBytes(bytes.data() + at, count * unit);
+  for (std::size_t k = 0; k < fields.size(); ++k) {
+    compute::RealBuffer& f = this->*fields[k];
+    if (k >= stored) {
+      if (count) f.upload(std::vector<double>(capacity_, 0.0));
+      continue;
+    }
+    if (count) f.raw().writeBytes(bytes.data() + at, count * unit);
     at += count * unit;
   }
   writeParams();
@@ -420,7 +443,8 @@ bool ParticleSolver::sortAndEvaluateStress(double ds) {
   if (count_ == 0) return false;
   const compute::Range global{count_};
   stress_.bind(params_, ng.params(), ng.cellStart(), ng.cellEnd(), x_, y_, vx_, vy_, V_, A_, H_, rho_, gn_, phi_, delta_, sxx_,
-               syy_, sxy_, coh_, coh0_, plastic_, Nxx_, Nyy_, Nxy_, gradCorrection_, div_, rhoA_, artStress_,
+               syy_, sxy_, coh_, coh0_, plastic_, Nxx_, Nyy_, Nxy_, gradCorrection_, areaShare_, numberDensity_, rhoA_,
+               artStress_,
                compute::RealArg{ds});
   stress_.launch(global, kParticleGroup, "particle_stress");
   return true;
@@ -433,7 +457,7 @@ void ParticleSolver::subStep(double ds) {
   forces_.bind(params_, ng.params(), ng.cellStart(), ng.cellEnd(), x_, y_, vx_, vy_, m_, A_, rhoA_, Nxx_, Nyy_, Nxy_, gradCorrection_,
                artStress_, ax_, ay_, tally_);
   forces_.launch(global, kParticleGroup, "particle_forces");
-  integrate_.bind(params_, mask_, bed_, gradX_, gradY_, gn_, limitedSlope_, x_, y_, vx_, vy_, m_, delta_, ax_, ay_, A_, div_, V_, rho_, Vf_,
+  integrate_.bind(params_, mask_, bed_, limitedSlope_, x_, y_, vx_, vy_, m_, delta_, ax_, ay_, A_, areaShare_, numberDensity_, V_, rho_, Vf_,
                   Vf0_, coh_, coh0_, released_, fluidDepth_, liftOff_, tally_, compute::RealArg{ds});
   integrate_.launch(global, kParticleGroup, "particle_integrate");
   // Rows of count_ entries (particle_integrate): the outflow mass, and the work of the artificial

@@ -157,11 +157,14 @@ class ParticleSolver {
   compute::Reducer reducer_;
   compute::RawBuffer params_;
   compute::Buffer<uint8_t> mask_;
-  compute::RealBuffer bed_, gradX_, gradY_, gn_, limitedSlope_;
+  compute::RealBuffer bed_, gn_, limitedSlope_;
   // Particle fields (reordered together at every neighbour build).
   compute::RealBuffer x_, y_, vx_, vy_, m_, rho_, phi_, delta_, coh_, coh0_, sxx_, syy_, sxy_, plastic_, A_, V_, fsc0_, ffc0_;
   compute::RealBuffer Vf_, Vf0_, released_, fluidDepth_;
   compute::RealBuffer liftOff_;  ///< speed at which a particle moves away from the bed [m/s] (curvature term)
+  /// a_i = A_i S_i, the particle's share of its neighbours' number density (particle_density.cl); 0 until the
+  /// first stress pass sets it from the seeded area
+  compute::RealBuffer areaShare_;
   // Fluid coupling (setFluidCoupling).
   bool coupled_ = false;
   double grain_ = 0.01;
@@ -172,7 +175,7 @@ class ParticleSolver {
   compute::RealBuffer cellU_, cellV_;  ///< the cells' confined-phase velocity after the exchange (PIC share only)
   std::vector<double> gnHost_;
   // Per sub-step scratch (not reordered).
-  compute::RealBuffer rhoA_, H_, Nxx_, Nyy_, Nxy_, gradCorrection_, div_, ax_, ay_, speed_;
+  compute::RealBuffer rhoA_, H_, Nxx_, Nyy_, Nxy_, gradCorrection_, numberDensity_, ax_, ay_, speed_;
   /// Rows of count_ entries per sub-step: outflow mass, then the artificial viscosity's and the artificial
   /// stress's acceleration (x, y) from particle_forces, which particle_integrate turns into their work.
   compute::RealBuffer tally_;

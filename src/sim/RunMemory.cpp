@@ -46,13 +46,13 @@ void requireMemoryForRun(const Scene& scene, const std::string& demPath) {
 
 double bytesPerParticle(const std::string& precision) {
   const double real = precision == "double" ? 8.0 : 4.0;
-  // Device: the solver's 31 per-particle fields, 5 sub-step tallies, 5 totals, 3 gradient-correction
+  // Device: the solver's 32 per-particle fields, 5 sub-step tallies, 5 totals, 3 gradient-correction
   // and 3 artificial-stress components (particles/ParticleSolver.cpp, setParticles) and the neighbour
   // sort's keys, values and scratch (4 words).
-  const double device = 47 * real + 16;
+  const double device = 48 * real + 16;
   // Host, at the peak of a report: the seeding and material arrays (12 doubles), the downloaded
-  // state (30 doubles), a checkpoint's copy (22 reals) and a layer's attribute columns (15 doubles).
-  const double host = (12 + 30 + 15) * 8.0 + 22 * real;
+  // state (30 doubles), a checkpoint's copy (24 reals) and a layer's attribute columns (15 doubles).
+  const double host = (12 + 30 + 15) * 8.0 + 24 * real;
   return device + host;
 }
 
