@@ -47,20 +47,21 @@ inline real terrain_sample(__constant const ParticleParams* p, __global const re
   return a + ty * (b - a);
 }
 
-/// The gradient of the bed surface the particles move on, z = b(x, y): the bilinear interpolant of the
-/// cell-centre elevations (each dual cell, between four cell centres, is one bilinear patch; over the
-/// raster's outer half cells the edge patches continue linearly). One continuous surface, so the
-/// gravity force -g_n grad b it gives is the gradient of the potential g b along any path.
-inline real2 bed_surface_gradient(__constant const ParticleParams* p, __global const real* bed, real x, real y) {
+/// The bed surface the particles move on, z = b(x, y): the bilinear interpolant of the cell-centre
+/// elevations (each dual cell, between four cell centres, is one bilinear patch; over the raster's
+/// outer half cells the edge patches continue linearly). One continuous surface, so the gravity force
+/// -g_n grad b it gives is the gradient of the potential g b along any path. Returns (b, db/dx, db/dy).
+inline real3 bed_surface(__constant const ParticleParams* p, __global const real* bed, real x, real y) {
   const real fx = x / p->dx - (real)0.5, fy = y / p->dx - (real)0.5;
   const int i0 = p->nx > 1 ? clamp((int)floor(fx), 0, p->nx - 2) : 0, i1 = p->nx > 1 ? i0 + 1 : 0;
   const int j0 = p->ny > 1 ? clamp((int)floor(fy), 0, p->ny - 2) : 0, j1 = p->ny > 1 ? j0 + 1 : 0;
-  const real tx = fx - (real)i0, ty = fy - (real)j0;
+  const real tx = i1 > i0 ? fx - (real)i0 : (real)0, ty = j1 > j0 ? fy - (real)j0 : (real)0;
   const real b00 = bed[j0 * p->nx + i0], b10 = bed[j0 * p->nx + i1];
   const real b01 = bed[j1 * p->nx + i0], b11 = bed[j1 * p->nx + i1];
+  const real b = (1 - ty) * (b00 + tx * (b10 - b00)) + ty * (b01 + tx * (b11 - b01));
   const real gx = i1 > i0 ? ((1 - ty) * (b10 - b00) + ty * (b11 - b01)) / p->dx : (real)0;
   const real gy = j1 > j0 ? ((1 - tx) * (b01 - b00) + tx * (b11 - b10)) / p->dx : (real)0;
-  return (real2)(gx, gy);
+  return (real3)(b, gx, gy);
 }
 
 /// Index of the terrain cell holding (x, y), or -1 outside the raster.

@@ -17,7 +17,11 @@
 // kinetic energy changes by exactly the work of the internal forces. On a slope it is the work in the
 // bed's metric (the kinetic energy there is m v^T G v / 2, and the applied acceleration G^-1 a has
 // the power m a . v). The artificial viscosity's work is never positive for a pair; its sum over the
-// particles and sub-steps is the energy it dissipated (ParticleSolver's diagnostics).
+// particles and sub-steps is the energy it dissipated (ParticleSolver's diagnostics). Row 3 gets the
+// kinetic energy the basal friction and the wall contacts took in the sub-step (measured in the same
+// metric before and after them), so that KE + D_visc - W_art + W_friction is the potential energy
+// released; row 4 gets that, m g (b(x) - b(x_new)) on the bed surface (particle_common.cl), for the
+// particles that stay (test ParticleRealTerrain.*).
 // Water release (OpenLISEM Hazard P.27-P.28): the confined fluid follows the intact bonds,
 // V_f = V_f0 c / c0; what the particle loses, dV = V_f - V_f0 c / c0 >= 0 (c never rises), leaves
 // its volume and mass (rho_f dV) and is added to `released`, which the host moves to the grid's free
@@ -55,6 +59,18 @@ inline real face_rise(__constant const ParticleParams* p, __global const uchar* 
   return other - own;
 }
 
+/// Kinetic energy of a particle of mass m moving with horizontal velocity (u, v) on a bed of gradient
+/// (bx, by): m (|v|^2 + (v . grad b)^2) / 2 (the metric G of the internal forces, below; with
+/// `Slope Correction=0` the flat bed's m |v|^2 / 2).
+inline real kinetic_on_bed(real m, real u, real v, real bx, real by) {
+#if PARTICLE_METRIC
+  const real w = u * bx + v * by;
+#else
+  const real w = 0;
+#endif
+  return (real)0.5 * m * (u * u + v * v + w * w);
+}
+
 __kernel void particle_integrate(__constant const ParticleParams* p, __global const uchar* mask,
                                  __global const real* bed, __global const real* lslope,
                                  __global real* x, __global real* y, __global real* vx, __global real* vy,
@@ -72,6 +88,8 @@ __kernel void particle_integrate(__constant const ParticleParams* p, __global co
   tally[i] = 0;  // outflow mass
   tally[cap + i] = 0;
   tally[2 * cap + i] = 0;
+  tally[3 * cap + i] = 0;
+  tally[4 * cap + i] = 0;
   if (!(m[i] > (real)0)) return;
   if (coh0[i] > (real)0 && Vf[i] > (real)0) {
     const real dV = fmax((real)0, Vf[i] - Vf0[i] * coh[i] / coh0[i]);
@@ -101,8 +119,8 @@ __kernel void particle_integrate(__constant const ParticleParams* p, __global co
   // turn's normal force, v . (grad b(x) - grad b(x - dt v)) / dt, adds to the weight in the basal
   // friction (centripetal normal stress at concave bends); where it would pull, the particle lifts
   // off and lands later (its lift-off speed carried in lift_off, as the grid's solids carry theirs).
-  const real2 gb = bed_surface_gradient(p, bed, xi, yi);
-  const real bx = gb.x, by = gb.y;
+  const real3 surf = bed_surface(p, bed, xi, yi);
+  const real bx = surf.y, by = surf.z;
 #if PARTICLE_METRIC
   const real g = (real)GRAVITY / ((real)1 + bx * bx + by * by);
 #else
@@ -113,8 +131,8 @@ __kernel void particle_integrate(__constant const ParticleParams* p, __global co
   real gload = g;
   {
     const real xb = xi - dt * u0, yb = yi - dt * v0;
-    const real2 gbb = bed_surface_gradient(p, bed, xb, yb);
-    const real bxb = gbb.x, byb = gbb.y;
+    const real3 back = bed_surface(p, bed, xb, yb);
+    const real bxb = back.y, byb = back.z;
     const real d = u0 * (bx - bxb) + v0 * (by - byb);
     const real c2 = g / (real)GRAVITY;
     const real up = u0 - d * c2 * bx, vp = v0 - d * c2 * by;
@@ -150,6 +168,7 @@ __kernel void particle_integrate(__constant const ParticleParams* p, __global co
 #endif
   real ux = u0 + dt * (aix - ka * bx - g * bx), uy = v0 + dt * (aiy - ka * by - g * by);
   const real speed = sqrt(ux * ux + uy * uy);
+  const real kinetic = kinetic_on_bed(m[i], ux, uy, bx, by);  // before friction and walls
   const real gamma = fluid_depth[i] > (real)1e-6 ? p->rho_f / rho[i] : (real)0;
   const real stop = dt * tan(delta[i]) * gload * fmax((real)0, (real)1 - p->pore_b * gamma);
   if (speed <= stop) {
@@ -193,6 +212,9 @@ __kernel void particle_integrate(__constant const ParticleParams* p, __global co
     const real wx = (real)0.5 * dt * m[i] * (u0 + ux), wy = (real)0.5 * dt * m[i] * (v0 + uy);
     tally[cap + i] = avx * wx + avy * wy;
     tally[2 * cap + i] = asx * wx + asy * wy;
+    // What the basal friction and the wall contacts took: the kinetic energy on the bed (the same
+    // metric) before them less after them (both scale or cut the velocity, so this is >= 0).
+    tally[3 * cap + i] = kinetic - kinetic_on_bed(m[i], ux, uy, bx, by);
   }
   const int cell = terrain_cell(p, xn, yn);
   if (cell < 0 || !mask[cell]) {
@@ -203,6 +225,7 @@ __kernel void particle_integrate(__constant const ParticleParams* p, __global co
     vx[i] = vy[i] = 0;
     return;
   }
+  tally[4 * cap + i] = m[i] * (real)GRAVITY * (surf.x - bed_surface(p, bed, xn, yn).x);  // potential released
   A[i] = share[i] / numberDensity[i];  // the area anchored to the positions (particle_density.cl)
   vx[i] = ux;
   vy[i] = uy;
@@ -210,15 +233,18 @@ __kernel void particle_integrate(__constant const ParticleParams* p, __global co
   y[i] = yn;
 }
 
-/// Per-particle rows for the diagnostics (rows of `stride` entries): |v|, m |v|^2 / 2, m, V_f, released.
-__kernel void particle_totals(__constant const ParticleParams* p, __global const real* vx, __global const real* vy,
+/// Per-particle rows for the diagnostics (rows of `stride` entries): |v|, the kinetic energy on the bed
+/// (kinetic_on_bed), m, V_f, released.
+__kernel void particle_totals(__constant const ParticleParams* p, __global const real* bed, __global const real* x,
+                              __global const real* y, __global const real* vx, __global const real* vy,
                               __global const real* m, __global const real* Vf, __global const real* released,
                               __global real* rows, const int stride) {
   const int i = get_global_id(0);
   if (i >= p->count) return;
   const real v2 = vx[i] * vx[i] + vy[i] * vy[i];
+  const real3 surf = bed_surface(p, bed, x[i], y[i]);
   rows[i] = sqrt(v2);
-  rows[stride + i] = (real)0.5 * m[i] * v2;
+  rows[stride + i] = kinetic_on_bed(m[i], vx[i], vy[i], surf.y, surf.z);
   rows[2 * stride + i] = m[i];
   rows[3 * stride + i] = Vf[i];
   rows[4 * stride + i] = released[i];

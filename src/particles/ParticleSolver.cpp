@@ -264,7 +264,7 @@ void ParticleSolver::setParticles(const SeededParticles& seeded, const ParticleM
   const std::vector<double> coh = perParticle(material.cohesion, n, "cohesion");
   capacity_ = std::max<std::size_t>(n, 1);
   count_ = n;
-  diag_.viscousDissipation = diag_.artificialStressWork = 0;
+  diag_.viscousDissipation = diag_.artificialStressWork = diag_.frictionWork = diag_.potentialReleased = 0;
   auto make = [&](compute::RealBuffer& b, const char* label) { b = compute::RealBuffer(ctx_, capacity_, label); };
   make(A_, "particle area"), make(V_, "particle volume"), make(numberDensity_, "particle number density");
   make(areaShare_, "particle area share");
@@ -371,12 +371,12 @@ void ParticleSolver::reorderAll() {
   for (auto f : stateFields()) neighbours_->reorder(this->*f);
 }
 
-// Checkpoint layout: count, time, the two cumulative energies of the artificial terms, then each
-// state field's first `count` entries. Checkpoints written before the energies were tallied (format
-// 4 without them) have no energies and still restore, with the tallies starting from zero.
+// Checkpoint layout: count, time, the four cumulative energies (artificial viscosity, artificial
+// stress, friction, potential released), then each state field's first `count` entries.
 std::vector<char> ParticleSolver::saveState() const {
   const uint64_t count = count_;
-  const double energies[2] = {diag_.viscousDissipation, diag_.artificialStressWork};
+  const double energies[4] = {diag_.viscousDissipation, diag_.artificialStressWork, diag_.frictionWork,
+                              diag_.potentialReleased};
   std::vector<char> bytes(sizeof count + sizeof time_ + sizeof energies);
   std::memcpy(bytes.data(), &count, sizeof count);
   std::memcpy(bytes.data() + sizeof count, &time_, sizeof time_);
@@ -395,32 +395,37 @@ void ParticleSolver::restoreState(const std::vector<char>& bytes) {
   gridValid_ = false;
   const auto& fields = stateFields();
   const std::size_t unit = compute::realSize(ctx_.precision());
-  double energies[2] = {0, 0};
   if (bytes.size() >= sizeof count + sizeof time_) std::memcpy(&count, bytes.data(), sizeof count);
-  // Three layouts restore (newest first): the energies and every field; the energies and every field
-  // but the last (the area share, before 2026-12-05); neither (before the energies were tallied).
-  // A missing area share is set again from the restored areas at the first stress pass.
-  const std::size_t head = sizeof count + sizeof time_, all = fields.size() * count * unit, older = all - count * unit;
-  std::size_t stored = 0;
-  bool withEnergies = true;
-  if (bytes.size() == head + sizeof energies + all)
-    stored = fields.size();
-  else if (bytes.size() == head + sizeof energies + older)
-    stored = fields.size() - 1;
-  else if (bytes.size() == head + older)
-    stored = fields.size() - 1, withEnergies = false;
-  if (stored == 0 || count > capacity_)
+  // Three layouts restore, newest first: four energies and every field; before 2026-12-05 two
+  // energies (no friction work, no potential) and every field but the last (the area share); before
+  // the energies were tallied, neither. Missing energies start from zero; a missing area share is set again from
+  // the restored areas at the first stress pass.
+  struct Layout {
+    std::size_t energies, fields;
+  };
+  const std::size_t head = sizeof count + sizeof time_;
+  const Layout layouts[3] = {{4, fields.size()}, {2, fields.size() - 1}, {0, fields.size() - 1}};
+  const Layout* found = nullptr;
+  for (const Layout& l : layouts)
+    if (bytes.size() == head + l.energies * sizeof(double) + l.fields * count * unit) {
+      found = &l;
+      break;
+    }
+  if (!found || count > capacity_)
     throw InputError("checkpoint: the particle state does not fit this run's particles (" + std::to_string(capacity_) +
                      " seeded, " + compute::precisionName(ctx_.precision()) + ")");
   std::memcpy(&time_, bytes.data() + sizeof count, sizeof time_);
-  if (withEnergies) std::memcpy(energies, bytes.data() + head, sizeof energies);
+  double energies[4] = {0, 0, 0, 0};
+  std::memcpy(energies, bytes.data() + head, found->energies * sizeof(double));
   diag_.viscousDissipation = energies[0];
   diag_.artificialStressWork = energies[1];
+  diag_.frictionWork = energies[2];
+  diag_.potentialReleased = energies[3];
   count_ = count;
-  std::size_t at = head + (withEnergies ? sizeof energies : 0);
+  std::size_t at = head + found->energies * sizeof(double);
   for (std::size_t k = 0; k < fields.size(); ++k) {
     compute::RealBuffer& f = this->*fields[k];
-    if (k >= stored) {
+    if (k >= found->fields) {
       if (count) f.upload(std::vector<double>(capacity_, 0.0));
       continue;
     }
@@ -460,13 +465,17 @@ void ParticleSolver::subStep(double ds) {
   integrate_.bind(params_, mask_, bed_, limitedSlope_, x_, y_, vx_, vy_, m_, delta_, ax_, ay_, A_, areaShare_, numberDensity_, V_, rho_, Vf_,
                   Vf0_, coh_, coh0_, released_, fluidDepth_, liftOff_, tally_, compute::RealArg{ds});
   integrate_.launch(global, kParticleGroup, "particle_integrate");
-  // Rows of count_ entries (particle_integrate): the outflow mass, and the work of the artificial
-  // viscosity and of the artificial stress over the sub-step (with the midpoint velocity).
+  // Rows of count_ entries (particle_integrate): the outflow mass, the work of the artificial
+  // viscosity and of the artificial stress over the sub-step (with the midpoint velocity), and the
+  // energy friction and walls took, the potential energy released.
   using compute::ReduceOp;
-  const std::vector<double> t = reducer_.reduceRows(tally_, count_, {ReduceOp::Sum, ReduceOp::Sum, ReduceOp::Sum}, count_);
+  const std::vector<double> t =
+      reducer_.reduceRows(tally_, count_, {ReduceOp::Sum, ReduceOp::Sum, ReduceOp::Sum, ReduceOp::Sum, ReduceOp::Sum}, count_);
   diag_.outflowMass += t[0];
   diag_.viscousDissipation -= t[1];
   diag_.artificialStressWork += t[2];
+  diag_.frictionWork += t[3];
+  diag_.potentialReleased += t[4];
 }
 
 void ParticleSolver::computeDerivedFields() {
@@ -482,7 +491,7 @@ void ParticleSolver::updateDiagnostics() {
     diag_.mass = diag_.kinetic = diag_.maxSpeed = diag_.confinedFluid = diag_.pendingRelease = 0;
     return;
   }
-  speedKernel_.bind(params_, vx_, vy_, m_, Vf_, released_, speed_, static_cast<int>(capacity_));
+  speedKernel_.bind(params_, bed_, x_, y_, vx_, vy_, m_, Vf_, released_, speed_, static_cast<int>(capacity_));
   speedKernel_.launch(compute::Range{count_}, kParticleGroup, "particle_totals");
   using compute::ReduceOp;
   const std::vector<double> r = reducer_.reduceRows(

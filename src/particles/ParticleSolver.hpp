@@ -62,7 +62,7 @@ struct ParticleDiagnostics {
   std::size_t count = 0;       ///< live particles
   double mass = 0;             ///< [kg]
   double outflowMass = 0;      ///< mass removed at the domain edge in the last step [kg]
-  double kinetic = 0;          ///< [J]
+  double kinetic = 0;          ///< on the bed, m (|v|^2 + (v . grad b)^2) / 2 [J]
   double maxSpeed = 0;         ///< [m/s]
   double confinedFluid = 0;    ///< fluid volume held by the particles [m^3]
   double pendingRelease = 0;   ///< fluid released from broken bonds, not yet moved to the grid [m^3]
@@ -70,6 +70,12 @@ struct ParticleDiagnostics {
   double viscousDissipation = 0;
   /// Work the artificial stress did on the particles since the start (either sign) [J].
   double artificialStressWork = 0;
+  /// Energy the basal friction and the wall contacts took since the start (>= 0) [J]
+  /// (particle_integrate.cl).
+  double frictionWork = 0;
+  /// Potential energy released since the start, sum m g (b(start) - b(now)) along the particles' paths
+  /// on the bed surface, for the particles still in the domain at each sub-step [J].
+  double potentialReleased = 0;
   int subSteps = 0;            ///< sub-steps of the last step
 };
 

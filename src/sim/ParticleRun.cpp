@@ -127,9 +127,9 @@ double ParticleRun::balanceError() const {
 
 std::string ParticleRun::csvRow() const {
   const particles::ParticleDiagnostics& d = solver_->diagnostics();
-  char line[200];
-  std::snprintf(line, sizeof line, "%zu,%.12g,%.6g,%.6g,%.6g,%.6g", d.count, d.mass, d.outflowMass, d.kinetic,
-                d.viscousDissipation, d.artificialStressWork);
+  char line[256];
+  std::snprintf(line, sizeof line, "%zu,%.12g,%.6g,%.6g,%.6g,%.6g,%.6g,%.9g", d.count, d.mass, d.outflowMass, d.kinetic,
+                d.viscousDissipation, d.artificialStressWork, d.frictionWork, d.potentialReleased);
   return line;
 }
 

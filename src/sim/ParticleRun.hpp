@@ -40,12 +40,12 @@ class ParticleRun : public ParticleView {
   double cumulativeOutflow() const { return outflow_; }
   /// (mass + outflow + rho_f released water - initial) / initial.
   double balanceError() const;
-  /// Columns for diagnostics.csv: particles, mass [kg], outflow of the step [kg], kinetic [J], and
-  /// since the start the energy the artificial viscosity dissipated and the work of the artificial
-  /// stress [J].
+  /// Columns for diagnostics.csv: particles, mass [kg], outflow of the step [kg], kinetic energy on the
+  /// bed [J], and since the start the energy the artificial viscosity dissipated, the work of the
+  /// artificial stress, the energy friction and walls took and the potential energy released [J].
   static const char* csvHeader() {
     return "particles,particle_mass_kg,particle_outflow_kg,particle_kinetic_J,particle_viscous_dissipation_J,"
-           "particle_art_stress_work_J";
+           "particle_art_stress_work_J,particle_friction_work_J,particle_potential_released_J";
   }
   std::string csvRow() const;
   /// Writes the particles as a GeoPackage point layer (docs/outputs.md, "Particle layers").

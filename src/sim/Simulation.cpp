@@ -18,7 +18,8 @@ constexpr const char* kCsvHeader =
     "fluid_volume_m3,solid_volume_m3,fluid_outflow_m3,solid_outflow_m3,"
     "potential_energy_J,vertical_kinetic_J,energy_released_J,energy_lost_J,friction_drag_work_J,"
     "particles,particle_mass_kg,particle_outflow_kg,particle_kinetic_J,particle_viscous_dissipation_J,"
-    "particle_art_stress_work_J,cumulative_rain_m3,cumulative_infiltrated_m3,wall_s";
+    "particle_art_stress_work_J,particle_friction_work_J,particle_potential_released_J,cumulative_rain_m3,"
+    "cumulative_infiltrated_m3,wall_s";
 
 /// Total volume (both phases) and total outflow of the last step.
 double totalVolume(const flow::FlowDiagnostics& d) { return d.volume + d.volumeSolid; }

@@ -234,7 +234,9 @@ std::string Simulation::summaryJson(const RunSummary& s, Ending ending) const {
       << ", \"final_mass_kg\": " << particles_->mass() << ", \"outflow_kg\": " << particles_->cumulativeOutflow()
       << ", \"balance_error\": " << particles_->balanceError()
       << ", \"viscous_dissipation_J\": " << particles_->solver().diagnostics().viscousDissipation
-      << ", \"art_stress_work_J\": " << particles_->solver().diagnostics().artificialStressWork << "}";
+      << ", \"art_stress_work_J\": " << particles_->solver().diagnostics().artificialStressWork
+      << ", \"friction_work_J\": " << particles_->solver().diagnostics().frictionWork
+      << ", \"potential_released_J\": " << particles_->solver().diagnostics().potentialReleased << "}";
   o << "\n}\n";
   return o.str();
 }

@@ -197,7 +197,7 @@ TEST_F(Cli, HybridRunWritesParticleLayers) {
   EXPECT_TRUE(contains(json, "\"particles\": {\"count\": 990,")) << json;
   EXPECT_TRUE(contains(json, "\"balance_error\": 0}")) << json;
   const std::string csv = slurp(dir_ / "out/diagnostics.csv");
-  EXPECT_TRUE(contains(csv, ",particles,particle_mass_kg,particle_outflow_kg,particle_kinetic_J,particle_viscous_dissipation_J,particle_art_stress_work_J,cumulative_rain_m3,cumulative_infiltrated_m3,wall_s\n")) << csv.substr(0, 400);
+  EXPECT_TRUE(contains(csv, ",particles,particle_mass_kg,particle_outflow_kg,particle_kinetic_J,particle_viscous_dissipation_J,particle_art_stress_work_J,particle_friction_work_J,particle_potential_released_J,cumulative_rain_m3,cumulative_infiltrated_m3,wall_s\n")) << csv.substr(0, 400);
   ASSERT_TRUE(fs::is_regular_file(dir_ / "out/particles/particles_0000.gpkg"));
   const talus::io::ParticleLayer layer = talus::io::readParticleLayer((dir_ / "out/particles_final.gpkg").string());
   ASSERT_EQ(layer.size(), 990u);
