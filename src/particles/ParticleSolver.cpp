@@ -147,6 +147,25 @@ ParticleSolver::ParticleSolver(compute::Context& ctx, const Grid& grid, const Pa
   scratchX_ = compute::RealBuffer(ctx, n, "released discharge x");
   scratchY_ = compute::RealBuffer(ctx, n, "released discharge y");
   releasedMap_.fill(0.0);
+  hMax_ = compute::RealBuffer(ctx, n, "particle peak thickness");
+  vMax_ = compute::RealBuffer(ctx, n, "particle peak speed");
+  hMax_.fill(0.0);
+  vMax_.fill(0.0);
+  trackH_ = compute::RealBuffer(ctx, n, "particle thickness for the peak maps");
+  trackM_ = compute::RealBuffer(ctx, n, "particle mass for the peak maps");
+  trackPx_ = compute::RealBuffer(ctx, n, "particle momentum x for the peak maps");
+  trackPy_ = compute::RealBuffer(ctx, n, "particle momentum y for the peak maps");
+  maxima_ = compute::Kernel(ctx.program("particles/particle_maxima.cl"), "particle_track_maxima");
+}
+
+void ParticleSolver::trackMaxima() {
+  if (count_ == 0) return;
+  neighbours_->build(x_, y_, count_);
+  reorderAll();
+  transfer_->confinedToGrid(*neighbours_, x_, y_, V_, m_, vx_, vy_, trackH_, trackM_, trackPx_, trackPy_);
+  const int cells = static_cast<int>(grid_.cells());
+  maxima_.bind(cells, trackH_, trackM_, trackPx_, trackPy_, hMax_, vMax_);
+  maxima_.launch(compute::Range{grid_.cells()}, kParticleGroup, "particle_track_maxima");
 }
 
 double ParticleSolver::releaseToGrid(compute::RealBuffer& h, compute::RealBuffer& qx, compute::RealBuffer& qy) {
@@ -372,7 +391,8 @@ void ParticleSolver::reorderAll() {
 }
 
 // Checkpoint layout: count, time, the four cumulative energies (artificial viscosity, artificial
-// stress, friction, potential released), then each state field's first `count` entries.
+// stress, friction, potential released), each state field's first `count` entries, then the two
+// peak maps (thickness, speed; one value per cell).
 std::vector<char> ParticleSolver::saveState() const {
   const uint64_t count = count_;
   const double energies[4] = {diag_.viscousDissipation, diag_.artificialStressWork, diag_.frictionWork,
@@ -387,6 +407,11 @@ std::vector<char> ParticleSolver::saveState() const {
     bytes.resize(at + each);
     if (each) (this->*f).raw().readBytes(bytes.data() + at, each);
   }
+  for (const compute::RealBuffer* map : {&hMax_, &vMax_}) {
+    const std::size_t at = bytes.size(), size = map->raw().bytes();
+    bytes.resize(at + size);
+    map->raw().readBytes(bytes.data() + at, size);
+  }
   return bytes;
 }
 
@@ -396,18 +421,19 @@ void ParticleSolver::restoreState(const std::vector<char>& bytes) {
   const auto& fields = stateFields();
   const std::size_t unit = compute::realSize(ctx_.precision());
   if (bytes.size() >= sizeof count + sizeof time_) std::memcpy(&count, bytes.data(), sizeof count);
-  // Three layouts restore, newest first: four energies and every field; before 2026-12-05 two
-  // energies (no friction work, no potential) and every field but the last (the area share); before
-  // the energies were tallied, neither. Missing energies start from zero; a missing area share is set again from
-  // the restored areas at the first stress pass.
+  // Three layouts restore, newest first: four energies, every field and the peak maps; before
+  // 2026-12-05 two energies (no friction work, no potential), every field but the last (the area
+  // share) and no peak maps; before the energies were tallied, neither. Missing energies start from
+  // zero; a missing area share is set again from the restored areas at the first stress pass; missing
+  // peak maps restart from zero (the run warns: maxMapsRestored).
   struct Layout {
-    std::size_t energies, fields;
+    std::size_t energies, fields, maps;
   };
-  const std::size_t head = sizeof count + sizeof time_;
-  const Layout layouts[3] = {{4, fields.size()}, {2, fields.size() - 1}, {0, fields.size() - 1}};
+  const std::size_t head = sizeof count + sizeof time_, mapBytes = hMax_.raw().bytes();
+  const Layout layouts[3] = {{4, fields.size(), 2}, {2, fields.size() - 1, 0}, {0, fields.size() - 1, 0}};
   const Layout* found = nullptr;
   for (const Layout& l : layouts)
-    if (bytes.size() == head + l.energies * sizeof(double) + l.fields * count * unit) {
+    if (bytes.size() == head + l.energies * sizeof(double) + l.fields * count * unit + l.maps * mapBytes) {
       found = &l;
       break;
     }
@@ -431,6 +457,15 @@ void ParticleSolver::restoreState(const std::vector<char>& bytes) {
     }
     if (count) f.raw().writeBytes(bytes.data() + at, count * unit);
     at += count * unit;
+  }
+  maxMapsRestored_ = found->maps == 2;
+  for (compute::RealBuffer* map : {&hMax_, &vMax_}) {
+    if (!maxMapsRestored_) {
+      map->fill(0.0);
+      continue;
+    }
+    map->raw().writeBytes(bytes.data() + at, mapBytes);
+    at += mapBytes;
   }
   writeParams();
   updateDiagnostics();

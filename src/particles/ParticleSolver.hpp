@@ -107,6 +107,14 @@ class ParticleSolver {
   void restoreState(const std::vector<char>& bytes);
   /// Transfers the particles to the terrain grid (re-sorts them first; results are unchanged by it).
   ParticleGridFields gridFields();
+  /// False after restoring a checkpoint written before the peak maps were kept (they restart at 0).
+  bool maxMapsRestored() const { return maxMapsRestored_; }
+  /// Raises the peak maps of the particle phase by the P2G of the current positions (call after each
+  /// grid step; kernels/particles/particle_maxima.cl). Kept in checkpoints.
+  void trackMaxima();
+  /// Peak confined-phase thickness [m] and speed [m/s] per cell since the start.
+  std::vector<double> thicknessMax() const { return hMax_.download(); }
+  std::vector<double> speedMax() const { return vMax_.download(); }
   /// Moves the fluid released since the last call onto the grid's free fluid: adds its volume to
   /// `h` (thickness, m) and its momentum (the particles' velocity) to `qx`, `qy` (m^2/s), by P2G with
   /// the cubic B-spline weights (exact in total). Returns the volume moved [m^3] (0: nothing launched).
@@ -186,6 +194,10 @@ class ParticleSolver {
   /// stress's acceleration (x, y) from particle_forces, which particle_integrate turns into their work.
   compute::RealBuffer tally_;
   compute::RealBuffer artStress_;  ///< R of each particle (artificial_stress.cl), rows of the capacity
+  bool maxMapsRestored_ = true;
+  compute::RealBuffer hMax_, vMax_;  ///< peak maps of the particle phase (trackMaxima)
+  compute::RealBuffer trackH_, trackM_, trackPx_, trackPy_;  ///< trackMaxima's P2G
+  compute::Kernel maxima_;
   compute::Kernel stress_, forces_, integrate_, speedKernel_;
 };
 

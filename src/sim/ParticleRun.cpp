@@ -18,6 +18,7 @@ ParticleRun::ParticleRun(compute::Context& ctx, const Raster& dem, const Particl
   solver_->setParticles(scene.seeded, scene.material);
   solver_->setFluidCoupling(scene.fluid, scene.grain);
   solver_->computeDerivedFields();  // the layer at the start time is written before any step
+  solver_->trackMaxima();           // the peak maps start with the release
   fluidDensity_ = scene.settings.fluidDensity;
   initialMass_ = solver_->diagnostics().mass;
   // The grid sees the particles from its first step on (a zero-length exchange changes nothing).
@@ -48,6 +49,7 @@ std::string ParticleRun::step(double dt, double time) {
     });
   releasedTotal_ += releasedLast_;
   coupleToGrid(dt);
+  solver_->trackMaxima();
   // A particle faster than the elastic wave speed times 10 (or NaN) means the explicit scheme has
   // blown up: no physical flow on a DEM gets there.
   if (!std::isfinite(d.maxSpeed) || !std::isfinite(d.kinetic)) {

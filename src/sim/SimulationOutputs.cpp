@@ -171,6 +171,12 @@ void Simulation::writeFinal(const RunSummary& s, Ending ending) {
   }
   if (particles_) {
     attempt([&] { particles_->writeLayer(out_->claim("particles_final.gpkg")); });
+    // The particle phase's peak maps; not after resuming a checkpoint that predates them (they would
+    // miss the run before it: summary.json's warnings say so).
+    if (particles_->solver().maxMapsRestored()) {
+      attempt([&] { out_->writeMap("hcmax", particles_->solver().thicknessMax()); });
+      attempt([&] { out_->writeMap("vcmax", particles_->solver().speedMax()); });
+    }
     if (!failed) {
       const particles::ParticleGridFields pf = particles_->gridFields();
       const double none = -1.0;
@@ -202,10 +208,14 @@ std::string Simulation::summaryJson(const RunSummary& s, Ending ending) const {
   o << "{\n  \"talus_version\": \"0.1.0\",\n  \"run_file\": \"" << jsonEscape(scene_.runFile) << "\",\n"
     << "  \"status\": \"" << status << "\",\n";
   if (failed) o << "  \"failure\": \"" << jsonEscape(failure_) << "\",\n";
-  if (!scene_.warnings.empty()) {  // what the scene's loading warned about (dropped material, bands, ...)
+  // What the scene's loading warned about (dropped material, bands, ...), and what the run did.
+  std::vector<std::string> warnings = scene_.warnings;
+  if (particles_ && !particles_->solver().maxMapsRestored())
+    warnings.push_back("hcmax and vcmax are not written: the checkpoint this run resumed from predates the particles' "
+                       "peak maps, which would miss the run before it");
+  if (!warnings.empty()) {
     o << "  \"warnings\": [";
-    for (std::size_t w = 0; w < scene_.warnings.size(); ++w)
-      o << (w ? ", " : "") << "\"" << jsonEscape(scene_.warnings[w]) << "\"";
+    for (std::size_t w = 0; w < warnings.size(); ++w) o << (w ? ", " : "") << "\"" << jsonEscape(warnings[w]) << "\"";
     o << "],\n";
   }
   if (atRest_)

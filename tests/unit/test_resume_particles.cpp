@@ -7,6 +7,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -50,6 +51,10 @@ TEST(Checkpoint, HybridRunResumesBitwise) {
   ASSERT_GT(full.checkpoints, 0);
   const io::ParticleLayer before = io::readParticleLayer((dir / "out/particles_final.gpkg").string());
   const std::vector<double> waterBefore = io::readRaster((dir / "out/hffinal.tif").string()).values;
+  // The particle phase's peak maps travel in the checkpoint too.
+  const std::vector<double> hcmaxBefore = io::readRaster((dir / "out/hcmax.tif").string()).values;
+  const std::vector<double> vcmaxBefore = io::readRaster((dir / "out/vcmax.tif").string()).values;
+  EXPECT_GT(*std::max_element(vcmaxBefore.begin(), vcmaxBefore.end()), 0.0) << "the column must move";
   ASSERT_GT(before.size(), 0u);
   const std::vector<double>* frac = before.find("cohesion_fraction");
   ASSERT_TRUE(frac);
@@ -85,5 +90,7 @@ TEST(Checkpoint, HybridRunResumesBitwise) {
     EXPECT_TRUE(*b == a.values) << a.name << " differs after resuming";
   }
   EXPECT_TRUE(io::readRaster((dir / "out/hffinal.tif").string()).values == waterBefore);
+  EXPECT_TRUE(io::readRaster((dir / "out/hcmax.tif").string()).values == hcmaxBefore);
+  EXPECT_TRUE(io::readRaster((dir / "out/vcmax.tif").string()).values == vcmaxBefore);
   fs::remove_all(dir);
 }

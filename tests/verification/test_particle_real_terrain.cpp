@@ -104,10 +104,13 @@ TEST(ParticleRealTerrain, AGranularReleaseOnTheKotSlopeKeepsItsEnergyBudgetAndCo
     surface.at(s0.x[q], s0.y[q], &b, &bx, &by);
     bed0 += s0.mass[q] * kGravity * b;
   }
+  solver.trackMaxima();  // as ParticleRun does: the release, then after every step
+  double fastest = 0;  // largest horizontal particle speed at the reports
   double worstExcess = -1e300, leastBudget = 1e300, worstSpeed = 0, worstTally = 0, lowest = top, peakKinetic = 0,
          restAt = -1;
   for (int step = 1; step <= 200; ++step) {
     solver.step(1.0);
+    solver.trackMaxima();
     const ParticleState s = solver.state();
     ASSERT_EQ(s.size(), s0.size()) << "no particle may leave (walls) at t = " << step << " s";
     double kinetic = 0, maxSpeed = 0, bedNow = 0, layer = 0;
@@ -124,6 +127,9 @@ TEST(ParticleRealTerrain, AGranularReleaseOnTheKotSlopeKeepsItsEnergyBudgetAndCo
     }
     const double released = bed0 - bedNow + layer;
     worstSpeed = std::max(worstSpeed, maxSpeed / std::sqrt(2.0 * kGravity * (top - lowest)));
+    double horizontal = 0;
+    for (std::size_t q = 0; q < s.size(); ++q) horizontal = std::max(horizontal, std::hypot(s.vx[q], s.vy[q]));
+    fastest = std::max(fastest, horizontal);
     peakKinetic = std::max(peakKinetic, kinetic);
     const ParticleDiagnostics& d = solver.diagnostics();
     // The solver's own tallies: its kinetic energy and potential released against this test's sums.
@@ -146,6 +152,19 @@ TEST(ParticleRealTerrain, AGranularReleaseOnTheKotSlopeKeepsItsEnergyBudgetAndCo
   std::printf("kot slope: %zu particles, KE < 1e-3 of its peak at %.0f s, peak KE %.3e J, budget excess %.4f .. %.4f, "
               "tallies off by %.2e, worst speed over free fall %.3f, lowest bed reached %.1f m (top %.1f m)\n",
               s0.size(), restAt, peakKinetic, leastBudget, worstExcess, worstTally, worstSpeed, lowest, top);
+  // The peak maps (hcmax, vcmax): they hold the release's P2G, so they integrate to at least its
+  // volume, and a cell's speed, the mass-weighted mean of the particles on it, is at most the fastest
+  // particle's (at the reports; between them the maps see every grid step, so allow 10 %).
+  const std::vector<double> hMax = solver.thicknessMax(), vMax = solver.speedMax();
+  double peakVolume = 0, volume = 0, peakSpeed = 0;
+  for (std::size_t k = 0; k < hMax.size(); ++k) peakVolume += hMax[k] * g.dx * g.dx, peakSpeed = std::max(peakSpeed, vMax[k]);
+  for (std::size_t q = 0; q < seeded.size(); ++q) volume += seeded.volume[q];
+  std::printf("kot slope peak maps: %.4g m^3 under hcmax (release %.4g m^3), largest vcmax %.2f m/s (fastest particle %.2f "
+              "m/s at the reports)\n",
+              peakVolume, volume, peakSpeed, fastest);
+  EXPECT_GT(peakVolume, volume * (1 - 1e-12));
+  EXPECT_GT(peakSpeed, 0.5 * fastest);
+  EXPECT_LT(peakSpeed, 1.1 * fastest);
   EXPECT_LT(worstExcess, 0.005);
   EXPECT_GT(leastBudget, -0.03);
   EXPECT_LT(worstTally, 1e-6);
