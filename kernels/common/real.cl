@@ -11,14 +11,12 @@
 #pragma OPENCL EXTENSION cl_khr_fp64 : enable
 typedef double real;
 typedef double2 real2;
-typedef double3 real3;
 typedef double4 real4;
 #define REAL_MAX DBL_MAX
 #define REAL_EPS DBL_EPSILON
 #else
 typedef float real;
 typedef float2 real2;
-typedef float3 real3;
 typedef float4 real4;
 #define REAL_MAX FLT_MAX
 #define REAL_EPS FLT_EPSILON

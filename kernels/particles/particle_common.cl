@@ -47,21 +47,21 @@ inline real terrain_sample(__constant const ParticleParams* p, __global const re
   return a + ty * (b - a);
 }
 
-/// The bed surface the particles move on, z = b(x, y): the bilinear interpolant of the cell-centre
-/// elevations (each dual cell, between four cell centres, is one bilinear patch; over the raster's
-/// outer half cells the edge patches continue linearly). One continuous surface, so the gravity force
-/// -g_n grad b it gives is the gradient of the potential g b along any path. Returns (b, db/dx, db/dy).
-inline real3 bed_surface(__constant const ParticleParams* p, __global const real* bed, real x, real y) {
+/// The gradient of the bed surface the particles move on, z = b(x, y): the bilinear interpolant of
+/// the cell-centre elevations (each dual cell, between four cell centres, is one bilinear patch;
+/// over the raster's outer half cells the edge patches continue linearly). One continuous surface, so
+/// the gravity force -g_n grad b it gives is the gradient of the potential g b along any path.
+/// `patch` holds, per patch (indexed by its lower-left centre's cell, rows of nx * ny), the slopes
+/// of its two edges from that centre and its twist, e_x = (b10 - b00) / dx, e_y = (b01 - b00) / dx,
+/// t = (b11 - b10 - b01 + b00) / dx, computed by the host in double (ParticleSolver): a plane then
+/// has the same gradient to the last bit everywhere, and no difference of two large elevations is
+/// taken in float. In the patch, grad b = (e_x + t v, e_y + t u) at the fractional position (u, v).
+inline real2 bed_gradient(__constant const ParticleParams* p, __global const real* patch, real x, real y) {
   const real fx = x / p->dx - (real)0.5, fy = y / p->dx - (real)0.5;
-  const int i0 = p->nx > 1 ? clamp((int)floor(fx), 0, p->nx - 2) : 0, i1 = p->nx > 1 ? i0 + 1 : 0;
-  const int j0 = p->ny > 1 ? clamp((int)floor(fy), 0, p->ny - 2) : 0, j1 = p->ny > 1 ? j0 + 1 : 0;
-  const real tx = i1 > i0 ? fx - (real)i0 : (real)0, ty = j1 > j0 ? fy - (real)j0 : (real)0;
-  const real b00 = bed[j0 * p->nx + i0], b10 = bed[j0 * p->nx + i1];
-  const real b01 = bed[j1 * p->nx + i0], b11 = bed[j1 * p->nx + i1];
-  const real b = (1 - ty) * (b00 + tx * (b10 - b00)) + ty * (b01 + tx * (b11 - b01));
-  const real gx = i1 > i0 ? ((1 - ty) * (b10 - b00) + ty * (b11 - b01)) / p->dx : (real)0;
-  const real gy = j1 > j0 ? ((1 - tx) * (b01 - b00) + tx * (b11 - b10)) / p->dx : (real)0;
-  return (real3)(b, gx, gy);
+  const int i0 = clamp((int)floor(fx), 0, max(p->nx - 2, 0)), j0 = clamp((int)floor(fy), 0, max(p->ny - 2, 0));
+  const int k = j0 * p->nx + i0, n = p->nx * p->ny;
+  const real u = fx - (real)i0, v = fy - (real)j0, t = patch[2 * n + k];
+  return (real2)(patch[k] + t * v, patch[n + k] + t * u);
 }
 
 /// Index of the terrain cell holding (x, y), or -1 outside the raster.

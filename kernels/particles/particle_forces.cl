@@ -81,14 +81,14 @@ __kernel void particle_forces(__constant const ParticleParams* p, __constant con
       const real mu = h * vdotr / (r2 + (real)0.01 * h * h);
       pi = (-p->alpha_pi * p->sound_speed * mu + p->beta_pi * mu * mu) / ((real)0.5 * (rhoA[i] + rhoA[j]));
     }
-    if (txx != (real)0 || tyy != (real)0 || txy != (real)0) {
+    if (txx != (real)0 || tyy != (real)0 || txy != (real)0 || pi != (real)0) {
       const real c00 = (real)0.5 * (ai00 + bj00), c01 = (real)0.5 * (ai01 + bj01), c11 = (real)0.5 * (ai11 + bj11);
       const real gx = c00 * g0.x + c01 * g0.y, gy = c01 * g0.x + c11 * g0.y;
       accx += m[j] * (txx * gx + txy * gy);
       accy += m[j] * (txy * gx + tyy * gy);
+      avx -= m[j] * pi * g0.x;  // the viscosity along the plain gradient (header)
+      avy -= m[j] * pi * g0.y;
     }
-    avx -= m[j] * pi * g0.x;  // along the plain gradient (header)
-    avy -= m[j] * pi * g0.y;
   }
   const real s = A[i] / m[i];
   ax[i] = accx + avx + s * fx;

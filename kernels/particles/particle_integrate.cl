@@ -72,7 +72,7 @@ inline real kinetic_on_bed(real m, real u, real v, real bx, real by) {
 }
 
 __kernel void particle_integrate(__constant const ParticleParams* p, __global const uchar* mask,
-                                 __global const real* bed, __global const real* lslope,
+                                 __global const real* bed, __global const real* patch, __global const real* lslope,
                                  __global real* x, __global real* y, __global real* vx, __global real* vy,
                                  __global real* m, __global const real* delta, __global const real* ax,
                                  __global const real* ay, __global real* A, __global const real* share,
@@ -103,7 +103,7 @@ __kernel void particle_integrate(__constant const ParticleParams* p, __global co
   }
   const real xi = x[i], yi = y[i];
   // The bed is one continuous surface z = b(x, y), the bilinear interpolant of the cell-centre
-  // elevations (particle_common.cl, bed_surface_gradient), and gravity, the metric below and the turn
+  // elevations (particle_common.cl, bed_gradient), and gravity, the metric below and the turn
   // all take its exact gradient at the particle, with g_n = g / (1 + |grad b|^2) of that gradient
   // (cos^2 of its slope). The force -g_n grad b is then the Lagrangian one of a particle held on that
   // surface, and its work along any path is the drop of g b: a block sliding over a noisy DEM gains
@@ -119,8 +119,8 @@ __kernel void particle_integrate(__constant const ParticleParams* p, __global co
   // turn's normal force, v . (grad b(x) - grad b(x - dt v)) / dt, adds to the weight in the basal
   // friction (centripetal normal stress at concave bends); where it would pull, the particle lifts
   // off and lands later (its lift-off speed carried in lift_off, as the grid's solids carry theirs).
-  const real3 surf = bed_surface(p, bed, xi, yi);
-  const real bx = surf.y, by = surf.z;
+  const real2 slope = bed_gradient(p, patch, xi, yi);
+  const real bx = slope.x, by = slope.y;
 #if PARTICLE_METRIC
   const real g = (real)GRAVITY / ((real)1 + bx * bx + by * by);
 #else
@@ -131,8 +131,8 @@ __kernel void particle_integrate(__constant const ParticleParams* p, __global co
   real gload = g;
   {
     const real xb = xi - dt * u0, yb = yi - dt * v0;
-    const real3 back = bed_surface(p, bed, xb, yb);
-    const real bxb = back.y, byb = back.z;
+    const real2 back = bed_gradient(p, patch, xb, yb);
+    const real bxb = back.x, byb = back.y;
     const real d = u0 * (bx - bxb) + v0 * (by - byb);
     const real c2 = g / (real)GRAVITY;
     const real up = u0 - d * c2 * bx, vp = v0 - d * c2 * by;
@@ -225,7 +225,13 @@ __kernel void particle_integrate(__constant const ParticleParams* p, __global co
     vx[i] = vy[i] = 0;
     return;
   }
-  tally[4 * cap + i] = m[i] * (real)GRAVITY * (surf.x - bed_surface(p, bed, xn, yn).x);  // potential released
+  {
+    // The potential released, m g (b(x) - b(x_new)), as the gradient at the midpoint times the step:
+    // exact for the bilinear patch (b is quadratic along a straight path in it), and no difference
+    // of two elevations of a thousand metres in float.
+    const real2 mid = bed_gradient(p, patch, (real)0.5 * (xi + xn), (real)0.5 * (yi + yn));
+    tally[4 * cap + i] = -m[i] * (real)GRAVITY * (mid.x * (xn - xi) + mid.y * (yn - yi));
+  }
   A[i] = share[i] / numberDensity[i];  // the area anchored to the positions (particle_density.cl)
   vx[i] = ux;
   vy[i] = uy;
@@ -235,16 +241,16 @@ __kernel void particle_integrate(__constant const ParticleParams* p, __global co
 
 /// Per-particle rows for the diagnostics (rows of `stride` entries): |v|, the kinetic energy on the bed
 /// (kinetic_on_bed), m, V_f, released.
-__kernel void particle_totals(__constant const ParticleParams* p, __global const real* bed, __global const real* x,
+__kernel void particle_totals(__constant const ParticleParams* p, __global const real* patch, __global const real* x,
                               __global const real* y, __global const real* vx, __global const real* vy,
                               __global const real* m, __global const real* Vf, __global const real* released,
                               __global real* rows, const int stride) {
   const int i = get_global_id(0);
   if (i >= p->count) return;
   const real v2 = vx[i] * vx[i] + vy[i] * vy[i];
-  const real3 surf = bed_surface(p, bed, x[i], y[i]);
+  const real2 slope = bed_gradient(p, patch, x[i], y[i]);
   rows[i] = sqrt(v2);
-  rows[stride + i] = kinetic_on_bed(m[i], vx[i], vy[i], surf.y, surf.z);
+  rows[stride + i] = kinetic_on_bed(m[i], vx[i], vy[i], slope.x, slope.y);
   rows[2 * stride + i] = m[i];
   rows[3 * stride + i] = Vf[i];
   rows[4 * stride + i] = released[i];

@@ -17,7 +17,7 @@
 namespace talus::particles {
 namespace {
 
-/// The cell-centre elevations of the particles' bed surface (particle_common.cl, bed_surface_gradient):
+/// The cell-centre elevations of the particles' bed surface (particle_common.cl, bed_gradient):
 /// the DEM's, and in each nodata cell the mean of its nearest domain cells (rings of 4-neighbours, filled
 /// outwards), so the surface near a nodata hole or edge continues flat instead of falling to a placeholder.
 std::vector<double> surfaceElevations(const Grid& g, const std::vector<double>& bed, const std::vector<uint8_t>& mask) {
@@ -120,7 +120,28 @@ ParticleSolver::ParticleSolver(compute::Context& ctx, const Grid& grid, const Pa
   mask_ = compute::Buffer<uint8_t>(ctx, n, "particle terrain mask");
   mask_.write(terrain.mask);
   bed_ = compute::RealBuffer(ctx, n, "particle bed elevation");
-  bed_.upload(surfaceElevations(grid, terrain.bed, terrain.mask));
+  std::vector<double> bed = terrain.bed;
+  for (std::size_t k = 0; k < n; ++k)
+    if (!terrain.mask[k]) bed[k] = 0.0;  // never read: a nodata face is a wall or an outlet (particle_integrate.cl)
+  bed_.upload(bed);
+  {
+    // The bed surface's bilinear patches (particle_common.cl, bed_gradient), in double: the slopes
+    // of each patch's edges from its lower-left cell centre and its twist, rows of n.
+    const std::vector<double> z = surfaceElevations(grid, terrain.bed, terrain.mask);
+    std::vector<double> patch(3 * n, 0.0);
+    for (int j = 0; j < grid.ny; ++j)
+      for (int i = 0; i < grid.nx; ++i) {
+        const std::size_t k = grid.index(i, j);
+        const bool east = i + 1 < grid.nx, north = j + 1 < grid.ny;
+        const double b00 = z[k], b10 = east ? z[grid.index(i + 1, j)] : b00, b01 = north ? z[grid.index(i, j + 1)] : b00;
+        const double b11 = east && north ? z[grid.index(i + 1, j + 1)] : east ? b10 : b01;
+        patch[k] = (b10 - b00) / grid.dx;
+        patch[n + k] = (b01 - b00) / grid.dx;
+        patch[2 * n + k] = (b11 - b10 - b01 + b00) / grid.dx;
+      }
+    bedPatch_ = compute::RealBuffer(ctx, 3 * n, "particle bed surface patches");
+    bedPatch_.upload(patch);
+  }
   gn_ = compute::RealBuffer(ctx, n, "particle g_n");
   limitedSlope_ = compute::RealBuffer(ctx, 2 * n, "particle limited bed slope");
   {
@@ -497,7 +518,7 @@ void ParticleSolver::subStep(double ds) {
   forces_.bind(params_, ng.params(), ng.cellStart(), ng.cellEnd(), x_, y_, vx_, vy_, m_, A_, rhoA_, Nxx_, Nyy_, Nxy_, gradCorrection_,
                artStress_, ax_, ay_, tally_);
   forces_.launch(global, kParticleGroup, "particle_forces");
-  integrate_.bind(params_, mask_, bed_, limitedSlope_, x_, y_, vx_, vy_, m_, delta_, ax_, ay_, A_, areaShare_, numberDensity_, V_, rho_, Vf_,
+  integrate_.bind(params_, mask_, bed_, bedPatch_, limitedSlope_, x_, y_, vx_, vy_, m_, delta_, ax_, ay_, A_, areaShare_, numberDensity_, V_, rho_, Vf_,
                   Vf0_, coh_, coh0_, released_, fluidDepth_, liftOff_, tally_, compute::RealArg{ds});
   integrate_.launch(global, kParticleGroup, "particle_integrate");
   // Rows of count_ entries (particle_integrate): the outflow mass, the work of the artificial
@@ -526,7 +547,7 @@ void ParticleSolver::updateDiagnostics() {
     diag_.mass = diag_.kinetic = diag_.maxSpeed = diag_.confinedFluid = diag_.pendingRelease = 0;
     return;
   }
-  speedKernel_.bind(params_, bed_, x_, y_, vx_, vy_, m_, Vf_, released_, speed_, static_cast<int>(capacity_));
+  speedKernel_.bind(params_, bedPatch_, x_, y_, vx_, vy_, m_, Vf_, released_, speed_, static_cast<int>(capacity_));
   speedKernel_.launch(compute::Range{count_}, kParticleGroup, "particle_totals");
   using compute::ReduceOp;
   const std::vector<double> r = reducer_.reduceRows(

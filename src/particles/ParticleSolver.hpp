@@ -172,6 +172,7 @@ class ParticleSolver {
   compute::RawBuffer params_;
   compute::Buffer<uint8_t> mask_;
   compute::RealBuffer bed_, gn_, limitedSlope_;
+  compute::RealBuffer bedPatch_;  ///< the bed surface's bilinear patches (particle_common.cl, bed_gradient)
   // Particle fields (reordered together at every neighbour build).
   compute::RealBuffer x_, y_, vx_, vy_, m_, rho_, phi_, delta_, coh_, coh0_, sxx_, syy_, sxy_, plastic_, A_, V_, fsc0_, ffc0_;
   compute::RealBuffer Vf_, Vf0_, released_, fluidDepth_;

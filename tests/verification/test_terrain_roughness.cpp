@@ -299,7 +299,7 @@ NoisyBlockRun particleBlockOnNoisyPlane(double amplitude) {
 //   block's energy may vary).
 // Measured, centre of mass: 1.0003 / 0.989 / 0.929 / 0.761; particles: 0.759 / 0.872 / 0.850 / 0.885
 // (the rough bed takes energy: a block thrown off a crest lands inelastically).
-// Before the bed was one surface (particle_common.cl, bed_surface_gradient; the force sampled a blend
+// Before the bed was one surface (particle_common.cl, bed_gradient; the force sampled a blend
 // of the cells' centred differences, which is not the gradient of any surface): the centre of mass
 // 1.0003 / 1.031 / (not run) / 1.120 at A = 0 / 0.1 / 0.25 / 0.5, faster than its own free fall by 3
 // and 12 %, which the particle bound (0.832 / 0.908 / 0.977) did not catch. Before the internal forces took the bed's metric, the particle
