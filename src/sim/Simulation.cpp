@@ -258,7 +258,7 @@ Progress Simulation::stepOnce() {
   char sourcesText[64];
   std::snprintf(sourcesText, sizeof sourcesText, ",%.12g,%.12g", totalRain_, totalInfiltrated_);
   guardedWrite([&] {
-    out_->appendDiagnostics(kCsvHeader, std::string(line) + (particles_ ? particles_->csvRow() : "0,0,0,0,0,0") +
+    out_->appendDiagnostics(kCsvHeader, std::string(line) + (particles_ ? particles_->csvRow() : "0,0,0,0,0,0,0,0") +
                                             sourcesText + wallText);
   });
   if (solver_->time() >= nextReport_ * (1 - 1e-15)) {

@@ -8,6 +8,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -86,7 +87,14 @@ std::string runFingerprint(const fs::path& out) {
   }
   std::istringstream csv(readFile(out / "diagnostics.csv"));
   std::string line;
-  while (std::getline(csv, line)) all += line.substr(0, line.rfind(',')) + "\n";
+  long columns = -1;
+  while (std::getline(csv, line)) {
+    // Every row has the header's columns (a run without particles writes zeros in theirs).
+    const long commas = std::count(line.begin(), line.end(), ',');
+    if (columns < 0) columns = commas;
+    EXPECT_EQ(commas, columns) << out << ": " << line;
+    all += line.substr(0, line.rfind(',')) + "\n";
+  }
   all += readFile(out / "series" / "index.csv");
   for (const auto& e : fs::directory_iterator(out / "series"))
     if (e.path().extension() == ".tif") {
