@@ -33,20 +33,6 @@ typedef struct {
   real pad1;
 } ParticleParams;
 
-/// Bilinear interpolation of a cell-centred terrain field at (x, y); the four cells are clamped to
-/// the raster (values of nodata cells are whatever the host stored there: it stores the nearest
-/// valid value).
-inline real terrain_sample(__constant const ParticleParams* p, __global const real* f, real x, real y) {
-  const real fx = x / p->dx - (real)0.5, fy = y / p->dx - (real)0.5;
-  const real ix = floor(fx), iy = floor(fy);
-  const real tx = fx - ix, ty = fy - iy;
-  const int i0 = clamp((int)ix, 0, p->nx - 1), i1 = clamp((int)ix + 1, 0, p->nx - 1);
-  const int j0 = clamp((int)iy, 0, p->ny - 1), j1 = clamp((int)iy + 1, 0, p->ny - 1);
-  const real a = f[j0 * p->nx + i0] + tx * (f[j0 * p->nx + i1] - f[j0 * p->nx + i0]);
-  const real b = f[j1 * p->nx + i0] + tx * (f[j1 * p->nx + i1] - f[j1 * p->nx + i0]);
-  return a + ty * (b - a);
-}
-
 /// The gradient of the bed surface the particles move on, z = b(x, y): the bilinear interpolant of
 /// the cell-centre elevations (each dual cell, between four cell centres, is one bilinear patch;
 /// over the raster's outer half cells the edge patches continue linearly). One continuous surface, so
@@ -62,6 +48,20 @@ inline real2 bed_gradient(__constant const ParticleParams* p, __global const rea
   const int k = j0 * p->nx + i0, n = p->nx * p->ny;
   const real u = fx - (real)i0, v = fy - (real)j0, t = patch[2 * n + k];
   return (real2)(patch[k] + t * v, patch[n + k] + t * u);
+}
+
+#ifndef PARTICLE_METRIC
+#define PARTICLE_METRIC 1
+#endif
+
+/// The gravity normal to the bed of gradient `slope`, g_n = g / (1 + |grad b|^2) = g cos^2(theta)
+/// (spec §1); g itself with `Slope Correction=0` (PARTICLE_METRIC 0, the flat-bed equations).
+inline real bed_normal_gravity(real2 slope) {
+#if PARTICLE_METRIC
+  return (real)GRAVITY / ((real)1 + slope.x * slope.x + slope.y * slope.y);
+#else
+  return (real)GRAVITY;
+#endif
 }
 
 /// Index of the terrain cell holding (x, y), or -1 outside the raster.

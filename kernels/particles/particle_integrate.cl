@@ -41,9 +41,6 @@
 #ifndef PARTICLE_CURVATURE
 #define PARTICLE_CURVATURE 0
 #endif
-#ifndef PARTICLE_METRIC
-#define PARTICLE_METRIC 1
-#endif
 
 /// Rise of the reconstructed bed at the face from cell `here` to its neighbour (a, b) along one axis
 /// (d = +1 or -1): the neighbour's face value minus ours. Where the neighbour is not a domain cell
@@ -120,12 +117,7 @@ __kernel void particle_integrate(__constant const ParticleParams* p, __global co
   // friction (centripetal normal stress at concave bends); where it would pull, the particle lifts
   // off and lands later (its lift-off speed carried in lift_off, as the grid's solids carry theirs).
   const real2 slope = bed_gradient(p, patch, xi, yi);
-  const real bx = slope.x, by = slope.y;
-#if PARTICLE_METRIC
-  const real g = (real)GRAVITY / ((real)1 + bx * bx + by * by);
-#else
-  const real g = (real)GRAVITY;
-#endif
+  const real bx = slope.x, by = slope.y, g = bed_normal_gravity(slope);
 #if PARTICLE_CURVATURE
   real u0 = vx[i], v0 = vy[i];
   real gload = g;

@@ -40,7 +40,7 @@ __kernel void particle_stress(__constant const ParticleParams* p, __constant con
                               __global const uint* cell_start, __global const uint* cell_end,
                               __global const real* x, __global const real* y, __global const real* vx,
                               __global const real* vy, __global const real* V, __global const real* A,
-                              __global real* H, __global const real* rho, __global const real* gn,
+                              __global real* H, __global const real* rho, __global const real* patch,
                               __global const real* phi, __global const real* delta, __global real* sxx,
                               __global real* syy, __global real* sxy, __global real* coh,
                               __global const real* coh0, __global real* plastic, __global real* Nxx,
@@ -95,7 +95,7 @@ __kernel void particle_stress(__constant const ParticleParams* p, __constant con
   const real rhoAi = rhoi * Hi;
   H[i] = Hi;
   rhoA[i] = rhoAi;
-  const real gni = terrain_sample(p, gn, xi, yi);
+  const real gni = bed_normal_gravity(bed_gradient(p, patch, xi, yi));  // as particle_integrate's gravity
   const real pzz = (real)0.5 * rhoi * gni * Hi;
   const real K = particle_earth_pressure(p, phi[i], delta[i], L00 + L11, gni, Hi);
   MaterialState s = {sxx[i], syy[i], sxy[i], coh[i], plastic[i]};

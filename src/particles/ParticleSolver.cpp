@@ -114,9 +114,6 @@ ParticleSolver::ParticleSolver(compute::Context& ctx, const Grid& grid, const Pa
   flow::FlowSettings fs;
   fs.slopeCorrection = terrain.slopeCorrection;
   const flow::SlopeGravity sg = flow::computeSlopeGravity(grid, terrain.bed, terrain.mask, fs);
-  std::vector<double> gn = sg.gn;
-  for (std::size_t k = 0; k < n; ++k)
-    if (!terrain.mask[k]) gn[k] = kGravity;
   mask_ = compute::Buffer<uint8_t>(ctx, n, "particle terrain mask");
   mask_.write(terrain.mask);
   bed_ = compute::RealBuffer(ctx, n, "particle bed elevation");
@@ -141,22 +138,21 @@ ParticleSolver::ParticleSolver(compute::Context& ctx, const Grid& grid, const Pa
       }
     bedPatch_ = compute::RealBuffer(ctx, 3 * n, "particle bed surface patches");
     bedPatch_.upload(patch);
+    patchHost_ = std::move(patch);
   }
-  gn_ = compute::RealBuffer(ctx, n, "particle g_n");
+  slopeCorrection_ = terrain.slopeCorrection;
   limitedSlope_ = compute::RealBuffer(ctx, 2 * n, "particle limited bed slope");
   {
     std::vector<double> ls = sg.slopeX;
     ls.insert(ls.end(), sg.slopeY.begin(), sg.slopeY.end());
     limitedSlope_.upload(ls);
   }
-  gn_.upload(gn);
-  gnHost_ = gn;
   params_ = compute::RawBuffer(ctx, sizeof(ParticleParamsT<double>), "particle parameters");
-  stress_ = compute::Kernel(ctx.program("particles/particle_stress.cl"), "particle_stress");
-  forces_ = compute::Kernel(ctx.program("particles/particle_forces.cl"), "particle_forces");
   const bool curved = terrain.slopeCorrection && terrain.curvature;
-  const std::string integrateOpts = std::string("-DPARTICLE_CURVATURE=") + (curved ? "1" : "0") +
-                                    " -DPARTICLE_METRIC=" + (terrain.slopeCorrection ? "1" : "0");
+  const std::string metric = std::string("-DPARTICLE_METRIC=") + (terrain.slopeCorrection ? "1" : "0");
+  const std::string integrateOpts = std::string("-DPARTICLE_CURVATURE=") + (curved ? "1 " : "0 ") + metric;
+  stress_ = compute::Kernel(ctx.program("particles/particle_stress.cl", metric), "particle_stress");
+  forces_ = compute::Kernel(ctx.program("particles/particle_forces.cl"), "particle_forces");
   integrate_ = compute::Kernel(ctx.program("particles/particle_integrate.cl", integrateOpts), "particle_integrate");
   speedKernel_ = compute::Kernel(ctx.program("particles/particle_integrate.cl", integrateOpts), "particle_totals");
   // The neighbour grid covers the raster with a margin of one support, so particles near the edge
@@ -177,6 +173,17 @@ ParticleSolver::ParticleSolver(compute::Context& ctx, const Grid& grid, const Pa
   trackPx_ = compute::RealBuffer(ctx, n, "particle momentum x for the peak maps");
   trackPy_ = compute::RealBuffer(ctx, n, "particle momentum y for the peak maps");
   maxima_ = compute::Kernel(ctx.program("particles/particle_maxima.cl"), "particle_track_maxima");
+}
+
+double ParticleSolver::normalGravityAt(double x, double y) const {
+  if (!slopeCorrection_ || !(std::isfinite(x) && std::isfinite(y))) return kGravity;
+  const std::size_t n = grid_.cells();
+  const double fx = x / grid_.dx - 0.5, fy = y / grid_.dx - 0.5;
+  const int i0 = std::clamp(static_cast<int>(std::floor(fx)), 0, std::max(grid_.nx - 2, 0));
+  const int j0 = std::clamp(static_cast<int>(std::floor(fy)), 0, std::max(grid_.ny - 2, 0));
+  const std::size_t k = grid_.index(i0, j0);
+  const double t = patchHost_[2 * n + k], bx = patchHost_[k] + t * (fy - j0), by = patchHost_[n + k] + t * (fx - i0);
+  return kGravity / (1 + bx * bx + by * by);
 }
 
 void ParticleSolver::trackMaxima() {
@@ -503,7 +510,7 @@ bool ParticleSolver::sortAndEvaluateStress(double ds) {
   }
   if (count_ == 0) return false;
   const compute::Range global{count_};
-  stress_.bind(params_, ng.params(), ng.cellStart(), ng.cellEnd(), x_, y_, vx_, vy_, V_, A_, H_, rho_, gn_, phi_, delta_, sxx_,
+  stress_.bind(params_, ng.params(), ng.cellStart(), ng.cellEnd(), x_, y_, vx_, vy_, V_, A_, H_, rho_, bedPatch_, phi_, delta_, sxx_,
                syy_, sxy_, coh_, coh0_, plastic_, Nxx_, Nyy_, Nxy_, gradCorrection_, areaShare_, numberDensity_, rhoA_,
                artStress_,
                compute::RealArg{ds});

@@ -141,8 +141,9 @@ class ParticleSolver {
   /// Recomputes that P2G from the current positions (after restoreState(), for a bitwise resume).
   void refreshGridTransfer();
   std::size_t count() const { return count_; }
-  /// g_n per terrain cell [m/s^2] (host copy of what the kernels use).
-  const std::vector<double>& gn() const { return gnHost_; }
+  /// g_n [m/s^2] at (x, y) on the particles' bed surface, as the kernels take it
+  /// (particle_common.cl, bed_normal_gravity of bed_gradient).
+  double normalGravityAt(double x, double y) const;
   double smoothingLength() const { return h_; }
   /// Mean particle spacing of the seeding [m].
   double meanSpacing() const { return spacing_; }
@@ -171,8 +172,10 @@ class ParticleSolver {
   compute::Reducer reducer_;
   compute::RawBuffer params_;
   compute::Buffer<uint8_t> mask_;
-  compute::RealBuffer bed_, gn_, limitedSlope_;
+  compute::RealBuffer bed_, limitedSlope_;
   compute::RealBuffer bedPatch_;  ///< the bed surface's bilinear patches (particle_common.cl, bed_gradient)
+  std::vector<double> patchHost_;  ///< the same on the host (normalGravityAt)
+  bool slopeCorrection_ = true;
   // Particle fields (reordered together at every neighbour build).
   compute::RealBuffer x_, y_, vx_, vy_, m_, rho_, phi_, delta_, coh_, coh0_, sxx_, syy_, sxy_, plastic_, A_, V_, fsc0_, ffc0_;
   compute::RealBuffer Vf_, Vf0_, released_, fluidDepth_;
@@ -188,7 +191,6 @@ class ParticleSolver {
   bool gridValid_ = false;  ///< cellH_, cellM_, cellPx_, cellPy_ hold the P2G of the current positions
   compute::RealBuffer cellH_, cellM_, cellPx_, cellPy_, cellDu_, cellDv_;
   compute::RealBuffer cellU_, cellV_;  ///< the cells' confined-phase velocity after the exchange (PIC share only)
-  std::vector<double> gnHost_;
   // Per sub-step scratch (not reordered).
   compute::RealBuffer rhoA_, H_, Nxx_, Nyy_, Nxy_, gradCorrection_, numberDensity_, ax_, ay_, speed_;
   /// Rows of count_ entries per sub-step: outflow mass, then the artificial viscosity's and the artificial

@@ -138,7 +138,6 @@ std::string ParticleRun::csvRow() const {
 void ParticleRun::writeLayer(const std::string& path) const {
   const particles::ParticleState& s = state();
   const Grid& g = dem_.grid;
-  const std::vector<double>& gn = solver_->gn();
   const std::size_t n = s.size();
   // Particles removed in the last sub-step (NaN position) are not written: they are outflow.
   std::vector<std::size_t> live;
@@ -159,10 +158,8 @@ void ParticleRun::writeLayer(const std::string& path) const {
     speed[q] = std::hypot(s.vx[q], s.vy[q]);
     // Total stress: the depth-integrated in-plane stress over H, and the overburden (P.41).
     const double H = s.H[q];
-    const int i = std::min(std::max(static_cast<int>(s.x[q] / g.dx), 0), g.nx - 1);
-    const int j = std::min(std::max(static_cast<int>(s.y[q] / g.dx), 0), g.ny - 1);
     const double xx = H > 0 ? s.Nxx[q] / H : 0, yy = H > 0 ? s.Nyy[q] / H : 0, xy = H > 0 ? s.Nxy[q] / H : 0;
-    const double zz = -0.5 * s.density[q] * gn[g.index(i, j)] * H;
+    const double zz = -0.5 * s.density[q] * solver_->normalGravityAt(s.x[q], s.y[q]) * H;
     const double p2 = 0.5 * (xx + yy), d = 0.5 * (xx - yy);
     I1[q] = xx + yy + zz;
     sqrtJ2[q] = std::sqrt(d * d + xy * xy + (p2 - zz) * (p2 - zz) / 3);

@@ -15,6 +15,10 @@ constexpr int kWaterArrays = 19;     // bed, g_p, g_n, Manning, slope speed, bed
 constexpr int kTwoPhaseArrays = 26;  // solid state at two stages (2 x 8), delta, maxima (7),
                                      // outflow of the solids, the sources' work per step
 constexpr int kParticleBedArrays = 5;  // particle bed (3) and its impulse (2)
+constexpr int kParticleGridArrays = 24;  // particles::ParticleSolver's per-cell buffers: bed, bed-surface
+                                         // patches (3), limited slope (2), released fluid and its
+                                         // discharge (3), peak maps (2) and their P2G (4), the fluid
+                                         // exchange's cell fields (6, 8 with PIC), the transfer's scratch
 constexpr int kHostOutputMaps = 4;     // h, qx, qy and the speed of a report, in double
 
 }  // namespace
@@ -24,7 +28,8 @@ RunMemory estimateRunMemory(const Scene& scene) {
   const double real = scene.precision == "double" ? 8.0 : 4.0;
   RunMemory m;
   m.deviceArrays = kWaterArrays + (scene.settings.twoPhase ? kTwoPhaseArrays : 0) +
-                   (scene.settings.particleBed ? kParticleBedArrays : 0);
+                   (scene.settings.particleBed ? kParticleBedArrays : 0) +
+                   (scene.particles.enabled ? kParticleGridArrays : 0);
   const double maskBytes = scene.settings.twoPhase ? 3.0 : 1.0;  // domain mask, static-solid flags
   m.deviceBytes = cells * (m.deviceArrays * real + maskBytes);
   m.hostBytes = cells * kHostOutputMaps * 8.0;
