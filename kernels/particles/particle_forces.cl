@@ -34,8 +34,65 @@
 #include "particles/artificial_stress.cl"
 #include "particles/particle_common.cl"
 
+/// One particle's sums over its neighbours (particle_forces below).
+typedef struct {
+  real accx, accy;  // artificial stress, sum_j m_j f^n R_ij . G_ij
+  real avx, avy;    // artificial viscosity, -sum_j m_j Pi_ij g_ij
+  real fx, fy;      // stress term, sum_j A_j (N_i C_i + N_j C_j) g_ij
+} ForceSums;
+
+/// The pair (i, j) within the support (r2 < 4 h^2, j != i) added to particle i's sums; fw the factor
+/// of its kernel gradient; `own` holds i's correction (0-2), stress (3-5) and artificial stress (6-8).
+inline void add_pair(__constant const ParticleParams* p, ForceSums* acc, int i, uint j, real dx, real dy, real r2, real fw,
+                     real vxi, real vyi, const real* own, int ri_on, __global const real* vx, __global const real* vy,
+                     __global const real* m, __global const real* A, __global const real* rhoA,
+                     __global const real* Nxx, __global const real* Nyy, __global const real* Nxy,
+                     __global const real* corr, __global const real* Rart) {
+  const real h = p->h;
+  const int cap = p->count;
+  const real ai00 = own[0], ai01 = own[1], ai11 = own[2];
+  const real2 g0 = (real2)(fw * dx, fw * dy);  // sph_grad (fw its factor, sph.cl)
+  // Stress term: N_i C_i g + N_j C_j g.
+  const real ux = ai00 * g0.x + ai01 * g0.y, uy = ai01 * g0.x + ai11 * g0.y;
+  const real bj00 = corr[j], bj01 = corr[cap + j], bj11 = corr[2 * cap + j];
+  const real wx = bj00 * g0.x + bj01 * g0.y, wy = bj01 * g0.x + bj11 * g0.y;
+  const real njxx = Nxx[j], njyy = Nyy[j], njxy = Nxy[j];
+  acc->fx += A[j] * (own[3] * ux + own[5] * uy + njxx * wx + njxy * wy);
+  acc->fy += A[j] * (own[5] * ux + own[4] * uy + njxy * wx + njyy * wy);
+  // Regularising terms with G_ij (most pairs have none: no tension, not approaching).
+  real txx = 0, tyy = 0, txy = 0, pi = 0;
+  const real rjxx = Rart[j], rjyy = Rart[cap + j], rjxy = Rart[2 * cap + j];
+  if (ri_on || rjxx != (real)0 || rjyy != (real)0 || rjxy != (real)0) {
+    const real f = sph_w(sqrt(r2), h) / p->w_spacing;
+    real fn = (real)1;
+    for (int k = 0; k < (int)p->n_art; ++k) fn *= f;
+    txx += fn * (own[6] + rjxx);
+    tyy += fn * (own[7] + rjyy);
+    txy += fn * (own[8] + rjxy);
+  }
+  const real vdotr = (vxi - vx[j]) * dx + (vyi - vy[j]) * dy;
+  if (vdotr < (real)0 && (p->alpha_pi > (real)0 || p->beta_pi > (real)0)) {
+    const real mu = h * vdotr / (r2 + (real)0.01 * h * h);
+    pi = (-p->alpha_pi * p->sound_speed * mu + p->beta_pi * mu * mu) / ((real)0.5 * (rhoA[i] + rhoA[j]));
+  }
+  if (txx != (real)0 || tyy != (real)0 || txy != (real)0 || pi != (real)0) {
+    const real c00 = (real)0.5 * (ai00 + bj00), c01 = (real)0.5 * (ai01 + bj01), c11 = (real)0.5 * (ai11 + bj11);
+    const real gx = c00 * g0.x + c01 * g0.y, gy = c01 * g0.x + c11 * g0.y;
+    acc->accx += m[j] * (txx * gx + txy * gy);
+    acc->accy += m[j] * (txy * gx + tyy * gy);
+    acc->avx -= m[j] * pi * g0.x;  // the viscosity along the plain gradient (header)
+    acc->avy -= m[j] * pi * g0.y;
+  }
+}
+
+/// Neighbours come from the list particle_stress wrote in the same sub-step (nb_list, nb_count:
+/// the pairs within the support in the neighbour grid's visiting order, so the sums are bitwise
+/// those of the grid loop); a particle with more neighbours than the list holds (nb_cap) walks the
+/// grid itself.
 __kernel void particle_forces(__constant const ParticleParams* p, __constant const NeighbourGridParams* ng,
                               __global const uint* cell_start, __global const uint* cell_end,
+                              __global const uint* nb_list, __global const real* nb_grad, __global const uint* nb_count,
+                              const uint nb_cap,
                               __global const real* x, __global const real* y, __global const real* vx,
                               __global const real* vy, __global const real* m, __global const real* A, __global const real* rhoA,
                               __global const real* Nxx, __global const real* Nyy, __global const real* Nxy,
@@ -46,55 +103,32 @@ __kernel void particle_forces(__constant const ParticleParams* p, __constant con
   const real h = p->h, r2max = (real)4 * h * h;
   const real xi = x[i], yi = y[i], vxi = vx[i], vyi = vy[i];
   const int cap = p->count;  // stride of the corr and Rart rows
-  const real rixx = Rart[i], riyy = Rart[cap + i], rixy = Rart[2 * cap + i];
-  const int ri_on = rixx != (real)0 || riyy != (real)0 || rixy != (real)0;
-  const real ai00 = corr[i], ai01 = corr[cap + i], ai11 = corr[2 * cap + i];
-  const real nixx = Nxx[i], niyy = Nyy[i], nixy = Nxy[i];
-  real accx = 0, accy = 0;  // artificial stress, sum_j m_j f^n R_ij . G_ij
-  real avx = 0, avy = 0;    // artificial viscosity, -sum_j m_j Pi_ij G_ij
-  real fx = 0, fy = 0;      // stress term, sum_j A_j (N_i C_i + N_j C_j) g_ij
-  FOR_EACH_NEARBY_PARTICLE(ng, cell_start, cell_end, xi, yi, j) {
-    if (j == (uint)i) continue;
-    const real dx = xi - x[j], dy = yi - y[j], r2 = dx * dx + dy * dy;
-    if (r2 >= r2max) continue;
-    const real2 g0 = sph_grad((real2)(dx, dy), h);
-    // Stress term: N_i C_i g + N_j C_j g.
-    const real ux = ai00 * g0.x + ai01 * g0.y, uy = ai01 * g0.x + ai11 * g0.y;
-    const real bj00 = corr[j], bj01 = corr[cap + j], bj11 = corr[2 * cap + j];
-    const real wx = bj00 * g0.x + bj01 * g0.y, wy = bj01 * g0.x + bj11 * g0.y;
-    const real njxx = Nxx[j], njyy = Nyy[j], njxy = Nxy[j];
-    fx += A[j] * (nixx * ux + nixy * uy + njxx * wx + njxy * wy);
-    fy += A[j] * (nixy * ux + niyy * uy + njxy * wx + njyy * wy);
-    // Regularising terms with G_ij (most pairs have none: no tension, not approaching).
-    real txx = 0, tyy = 0, txy = 0, pi = 0;
-    const real rjxx = Rart[j], rjyy = Rart[cap + j], rjxy = Rart[2 * cap + j];
-    if (ri_on || rjxx != (real)0 || rjyy != (real)0 || rjxy != (real)0) {
-      const real f = sph_w(sqrt(r2), h) / p->w_spacing;
-      real fn = (real)1;
-      for (int k = 0; k < (int)p->n_art; ++k) fn *= f;
-      txx += fn * (rixx + rjxx);
-      tyy += fn * (riyy + rjyy);
-      txy += fn * (rixy + rjxy);
+  const real own[9] = {corr[i], corr[cap + i], corr[2 * cap + i], Nxx[i], Nyy[i], Nxy[i],
+                       Rart[i], Rart[cap + i], Rart[2 * cap + i]};
+  const int ri_on = own[6] != (real)0 || own[7] != (real)0 || own[8] != (real)0;
+  ForceSums acc = {0, 0, 0, 0, 0, 0};
+  const uint n = nb_count[i];
+  if (n <= nb_cap) {
+    __global const uint* list = nb_list + (size_t)i * nb_cap;
+    __global const real* grad = nb_grad + (size_t)i * nb_cap;
+    for (uint q = 0; q < n; ++q) {
+      const uint j = list[q];
+      const real dx = xi - x[j], dy = yi - y[j], r2 = dx * dx + dy * dy;
+      add_pair(p, &acc, i, j, dx, dy, r2, grad[q], vxi, vyi, own, ri_on, vx, vy, m, A, rhoA, Nxx, Nyy, Nxy, corr, Rart);
     }
-    const real vdotr = (vxi - vx[j]) * dx + (vyi - vy[j]) * dy;
-    if (vdotr < (real)0 && (p->alpha_pi > (real)0 || p->beta_pi > (real)0)) {
-      const real mu = h * vdotr / (r2 + (real)0.01 * h * h);
-      pi = (-p->alpha_pi * p->sound_speed * mu + p->beta_pi * mu * mu) / ((real)0.5 * (rhoA[i] + rhoA[j]));
-    }
-    if (txx != (real)0 || tyy != (real)0 || txy != (real)0 || pi != (real)0) {
-      const real c00 = (real)0.5 * (ai00 + bj00), c01 = (real)0.5 * (ai01 + bj01), c11 = (real)0.5 * (ai11 + bj11);
-      const real gx = c00 * g0.x + c01 * g0.y, gy = c01 * g0.x + c11 * g0.y;
-      accx += m[j] * (txx * gx + txy * gy);
-      accy += m[j] * (txy * gx + tyy * gy);
-      avx -= m[j] * pi * g0.x;  // the viscosity along the plain gradient (header)
-      avy -= m[j] * pi * g0.y;
+  } else {
+    FOR_EACH_NEARBY_PARTICLE(ng, cell_start, cell_end, xi, yi, j) {
+      if (j == (uint)i) continue;
+      const real dx = xi - x[j], dy = yi - y[j], r2 = dx * dx + dy * dy;
+      if (r2 >= r2max) continue;
+      add_pair(p, &acc, i, j, dx, dy, r2, sph_grad_factor((real2)(dx, dy), h), vxi, vyi, own, ri_on, vx, vy, m, A, rhoA, Nxx, Nyy, Nxy, corr, Rart);
     }
   }
   const real s = A[i] / m[i];
-  ax[i] = accx + avx + s * fx;
-  ay[i] = accy + avy + s * fy;
-  tally[cap + i] = avx;
-  tally[2 * cap + i] = avy;
-  tally[3 * cap + i] = accx;
-  tally[4 * cap + i] = accy;
+  ax[i] = acc.accx + acc.avx + s * acc.fx;
+  ay[i] = acc.accy + acc.avy + s * acc.fy;
+  tally[cap + i] = acc.avx;
+  tally[2 * cap + i] = acc.avy;
+  tally[3 * cap + i] = acc.accx;
+  tally[4 * cap + i] = acc.accy;
 }

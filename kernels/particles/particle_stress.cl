@@ -19,7 +19,10 @@
 //    added to both normal components for the yield check (the total in-plane stress is
 //    sigma + sigma_lat I) and the vertical stress sigma_zz = -p_zz (P.41);
 // 3. the depth-integrated stress N = H (sigma + sigma_lat I) and C_i, used by particle_forces (whose
-//    forces are the adjoint of this L for any symmetric C).
+//    forces are the adjoint of this L for any symmetric C);
+// 4. the list of the neighbours within the support (j != i, at most nb_cap, in the grid's visiting
+//    order) with their kernel-gradient factor (sph_grad_factor) and their count, so particle_forces
+//    visits only those and evaluates no kernel for them.
 // K: Savage-Hutter from phi and delta, active while the particle's velocity field extends or stays
 // (tr L >= 0) and ramping to passive as it contracts (as the grid's solids), or constant.
 #include "common/earth_pressure.cl"
@@ -46,6 +49,7 @@ __kernel void particle_stress(__constant const ParticleParams* p, __constant con
                               __global const real* coh0, __global real* plastic, __global real* Nxx,
                               __global real* Nyy, __global real* Nxy, __global real* corr, __global real* share,
                               __global real* numberDensity, __global real* rhoA, __global real* Rart,
+                              __global uint* nb_list, __global real* nb_grad, __global uint* nb_count, const uint nb_cap,
                               const real dt) {
   const int i = get_global_id(0);
   if (i >= p->count) return;
@@ -55,14 +59,18 @@ __kernel void particle_stress(__constant const ParticleParams* p, __constant con
   real m00 = 0, m01 = 0, m10 = 0, m11 = 0;  // sum A_j (x_j - x_i) (x) grad W
   ThicknessSums th = {0, 0};
   real S = 0;  // the number density sum_j W_ij, i included (particle_density.cl)
+  uint found = 0;  // neighbours j != i within the support, listed for particle_forces
+  __global uint* list = nb_list + (size_t)i * nb_cap;
   FOR_EACH_NEARBY_PARTICLE(ng, cell_start, cell_end, xi, yi, j) {
     const real dx = xi - x[j], dy = yi - y[j], r2 = dx * dx + dy * dy;
     if (r2 >= r2max) continue;
-    const real w = sph_w(sqrt(r2), h);
+    const real r = sqrt(r2);
+    const real w = sph_w(r, h);
     S += w;
     thickness_add(&th, V[j], A[j], w);
     if (j == (uint)i) continue;
-    const real2 gw = sph_grad((real2)(dx, dy), h);
+    const real fw = sph_grad_factor_at(r, h);
+    const real2 gw = (real2)(fw * dx, fw * dy);  // sph_grad
     const real aj = A[j];  // the area the neighbour stands for
     const real du = vx[j] - vxi, dv = vy[j] - vyi;
     g00 += aj * du * gw.x;
@@ -73,6 +81,11 @@ __kernel void particle_stress(__constant const ParticleParams* p, __constant con
     m01 -= aj * dx * gw.y;
     m10 -= aj * dy * gw.x;
     m11 -= aj * dy * gw.y;
+    if (found < nb_cap) {
+      list[found] = j;
+      nb_grad[(size_t)i * nb_cap + found] = fw;
+    }
+    ++found;
   }
   // C = (M^2 + d^2 I)^-1 M with d = 0.01 (header, point 1); M symmetric: m01 = m10 up to rounding.
   // With P = det M it is C = [P tr(M) I + (d^2 - P) M] / D,
@@ -88,6 +101,7 @@ __kernel void particle_stress(__constant const ParticleParams* p, __constant con
     i01 = (d2 - P) * mo / D;
     i11 = (P * m00 + d2 * m11) / D;
   }
+  nb_count[i] = found;  // more than nb_cap: particle_forces walks the grid for this particle
   const real i10 = i01;
   const real L00 = g00 * i00 + g01 * i10, L01 = g00 * i01 + g01 * i11;
   const real L10 = g10 * i00 + g11 * i10, L11 = g10 * i01 + g11 * i11;

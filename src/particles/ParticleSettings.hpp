@@ -29,6 +29,10 @@ struct ParticleSettings {
   /// (P2G); 0 is FLIP (each particle keeps its own velocity plus the exchange's change), 1 PIC.
   double picFraction = 0.0;
   bool nodataWalls = true;
+  /// Entries of each particle's neighbour list (particle_stress lists, particle_forces reads; a
+  /// particle with more neighbours walks the neighbour grid in particle_forces, with the same sums).
+  /// 0: 1.5 times the neighbours at the seeding's spacing (ParticleSolver::allocateNeighbourLists).
+  unsigned neighbourListEntries = 0;
 
   double shearModulus() const { return youngModulus / (2 * (1 + poisson)); }
   /// The in-plane bulk modulus of plane stress, lambda* + G = E / (2 (1 - nu)) [Pa]

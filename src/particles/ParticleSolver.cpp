@@ -330,6 +330,7 @@ void ParticleSolver::setParticles(const SeededParticles& seeded, const ParticleM
   gradCorrection_ = compute::RealBuffer(ctx_, 3 * capacity_, "particle gradient correction");
   artStress_ = compute::RealBuffer(ctx_, 3 * capacity_, "particle artificial stress");
   if (n == 0) {
+    allocateNeighbourLists();
     writeParams();
     updateDiagnostics();
     return;
@@ -352,11 +353,24 @@ void ParticleSolver::setParticles(const SeededParticles& seeded, const ParticleM
   std::sort(cells.begin(), cells.end());
   const double seededCells = static_cast<double>(std::unique(cells.begin(), cells.end()) - cells.begin());
   spacing_ = grid_.dx * std::sqrt(seededCells / static_cast<double>(n));
+  allocateNeighbourLists();
   const double rhoMin = *std::min_element(rho.begin(), rho.end());
   const double elastic = std::sqrt(settings_.inPlaneWaveModulus() / rhoMin);
   waveSpeed_ = settings_.soundSpeed > 0 ? settings_.soundSpeed : elastic;
   writeParams();
   updateDiagnostics();
+}
+
+void ParticleSolver::allocateNeighbourLists() {
+  // Room for 1.5 times the neighbours a particle has at the seeding's spacing, pi (2h / spacing)^2
+  // (about 50 at 4 particles per cell and h = dx: 80 entries, 320 bytes). Denser spots than that
+  // (compressed by half in area) walk the grid instead: the same pairs, only slower.
+  const double expected = spacing_ > 0 ? 3.14159265358979 * std::pow(2 * h_ / spacing_, 2) : 0.0;
+  nbCap_ = static_cast<unsigned>(8 * std::ceil(1.5 * expected / 8));
+  nbCap_ = settings_.neighbourListEntries > 0 ? settings_.neighbourListEntries : std::max(nbCap_, 16u);
+  nbList_ = compute::Buffer<cl_uint>(ctx_, capacity_ * nbCap_, "particle neighbour lists");
+  nbCount_ = compute::Buffer<cl_uint>(ctx_, capacity_, "particle neighbour counts");
+  nbGrad_ = compute::RealBuffer(ctx_, capacity_ * nbCap_, "particle neighbour kernel gradients");
 }
 
 void ParticleSolver::setVelocities(const std::vector<double>& vx, const std::vector<double>& vy) {
@@ -512,8 +526,7 @@ bool ParticleSolver::sortAndEvaluateStress(double ds) {
   const compute::Range global{count_};
   stress_.bind(params_, ng.params(), ng.cellStart(), ng.cellEnd(), x_, y_, vx_, vy_, V_, A_, H_, rho_, bedPatch_, phi_, delta_, sxx_,
                syy_, sxy_, coh_, coh0_, plastic_, Nxx_, Nyy_, Nxy_, gradCorrection_, areaShare_, numberDensity_, rhoA_,
-               artStress_,
-               compute::RealArg{ds});
+               artStress_, nbList_, nbGrad_, nbCount_, nbCap_, compute::RealArg{ds});
   stress_.launch(global, kParticleGroup, "particle_stress");
   return true;
 }
@@ -522,8 +535,9 @@ void ParticleSolver::subStep(double ds) {
   if (!sortAndEvaluateStress(ds)) return;
   NeighbourGrid& ng = *neighbours_;
   const compute::Range global{count_};
-  forces_.bind(params_, ng.params(), ng.cellStart(), ng.cellEnd(), x_, y_, vx_, vy_, m_, A_, rhoA_, Nxx_, Nyy_, Nxy_, gradCorrection_,
-               artStress_, ax_, ay_, tally_);
+  forces_.bind(params_, ng.params(), ng.cellStart(), ng.cellEnd(), nbList_, nbGrad_, nbCount_, nbCap_, x_, y_, vx_, vy_, m_, A_,
+               rhoA_,
+               Nxx_, Nyy_, Nxy_, gradCorrection_, artStress_, ax_, ay_, tally_);
   forces_.launch(global, kParticleGroup, "particle_forces");
   integrate_.bind(params_, mask_, bed_, bedPatch_, limitedSlope_, x_, y_, vx_, vy_, m_, delta_, ax_, ay_, A_, areaShare_, numberDensity_, V_, rho_, Vf_,
                   Vf0_, coh_, coh0_, released_, fluidDepth_, liftOff_, tally_, compute::RealArg{ds});

@@ -156,6 +156,7 @@ class ParticleSolver {
   bool sortAndEvaluateStress(double ds);
   void writeParams();
   void reorderAll();
+  void allocateNeighbourLists();
   void updateDiagnostics();
   static const std::vector<compute::RealBuffer ParticleSolver::*>& stateFields();
 
@@ -197,6 +198,11 @@ class ParticleSolver {
   /// stress's acceleration (x, y) from particle_forces, which particle_integrate turns into their work.
   compute::RealBuffer tally_;
   compute::RealBuffer artStress_;  ///< R of each particle (artificial_stress.cl), rows of the capacity
+  /// Each particle's neighbours within the support, listed by particle_stress for particle_forces
+  /// (nbCap_ entries per particle; a particle with more walks the neighbour grid itself).
+  compute::Buffer<cl_uint> nbList_, nbCount_;
+  compute::RealBuffer nbGrad_;  ///< the listed pairs' kernel-gradient factors (sph.cl, sph_grad_factor)
+  unsigned nbCap_ = 0;
   bool maxMapsRestored_ = true;
   compute::RealBuffer hMax_, vMax_;  ///< peak maps of the particle phase (trackMaxima)
   compute::RealBuffer trackH_, trackM_, trackPx_, trackPy_;  ///< trackMaxima's P2G

@@ -22,11 +22,12 @@ import json
 import os
 import pathlib
 import re
-import sqlite3
-import struct
 import subprocess
 import sys
 import time
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from particle_layers import read_particle_layer  # noqa: E402
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 BROKEN = 0.1  # c/c0 below which a particle counts as broken (docs/scenes.md)
@@ -71,20 +72,7 @@ def set_keys(text, keys):
 
 def read_points(gpkg):
     """(x, mass, cohesion_fraction) of every particle of a Talus particle layer."""
-    con = sqlite3.connect(str(gpkg))
-    table = con.execute("SELECT table_name FROM gpkg_contents WHERE data_type='features'").fetchone()[0]
-    geom = con.execute("SELECT column_name FROM gpkg_geometry_columns WHERE table_name=?", (table,)).fetchone()[0]
-    rows = con.execute(f'SELECT "{geom}", mass, cohesion_fraction FROM "{table}"').fetchall()
-    con.close()
-    out = []
-    for blob, mass, frac in rows:
-        flags = blob[3]
-        env = [0, 32, 48, 48, 64][(flags >> 1) & 7]
-        wkb = blob[8 + env:]
-        order = "<" if wkb[0] == 1 else ">"
-        x, _y = struct.unpack(order + "dd", wkb[5:21])
-        out.append((x, mass, frac))
-    return out
+    return [(x, mass, frac) for x, _y, mass, frac in read_particle_layer(gpkg, ("mass", "cohesion_fraction"))]
 
 
 def x_origin(dem):
