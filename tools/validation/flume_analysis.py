@@ -64,6 +64,7 @@ WEAK, HALF, BROKEN = 0.99, 0.5, 0.1  # c/c0 classes of docs/scenes.md
 LINK = 0.012   # m: particles closer than this are neighbours (spacing 5 mm at 4 per 1 cm cell)
 SEED = 0.03    # m: damaged particles this close to the corner start the crack
 PLASTIC = 0.01  # plastic strain of the shear band
+BAND = 0.01    # m: half-width of the band along the obstacle's inner edge (two particle spacings)
 
 
 def read_layer(gpkg):
@@ -88,8 +89,10 @@ def geometry(scene_dir):
     x_break = x0 + scenes.FL_L_INCLINE * math.cos(math.radians(scenes.FL_INCLINE))
     _h, ol, ow = scenes.FL_OBST
     bw = scenes.FL_BLOCK[2]
-    rect = (x_break, yc + bw / 2 - ow, ol, ow)  # x, y, length, width
-    return dict(corner=(x_break, yc + bw / 2 - ow), rect=rect, yc=yc)
+    # make_paper_scenes.py's across coordinate Y grows with the row index, and rows run from north to
+    # south: its obstacle at Y in [bw/2 - ow, bw/2) lies at world y in (yc - bw/2, yc - bw/2 + ow].
+    rect = (x_break, yc - bw / 2, ol, ow)  # x, y of the lower-left corner, length, width
+    return dict(corner=(x_break, yc - bw / 2 + ow), rect=rect, yc=yc)
 
 
 def connected_reach(pts, corner, damaged):
@@ -117,6 +120,54 @@ def connected_reach(pts, corner, damaged):
     return len(seen), dist, max(upslope, 0.0)
 
 
+def block_frame(pts):
+    """The block's own frame from the particle cloud (robust centre, principal axes): e1 along its
+    length (the larger extent: 0.3 m against 0.25 m), pointing downslope, e2 = e1 turned by +90
+    degrees. Returns (centre, e1, e2) or None for a cloud that no longer has a clear long axis."""
+    xs = sorted(q["x"] for q in pts)
+    ys = sorted(q["y"] for q in pts)
+    mx, my = xs[len(xs) // 2], ys[len(ys) // 2]
+    core = [q for q in pts if math.hypot(q["x"] - mx, q["y"] - my) < 0.3]  # drops particles flung away
+    cx = sum(q["x"] for q in core) / len(core)
+    cy = sum(q["y"] for q in core) / len(core)
+    sxx = sum((q["x"] - cx) ** 2 for q in core)
+    syy = sum((q["y"] - cy) ** 2 for q in core)
+    sxy = sum((q["x"] - cx) * (q["y"] - cy) for q in core)
+    angle = 0.5 * math.atan2(2 * sxy, sxx - syy)  # direction of the largest variance
+    e1 = (math.cos(angle), math.sin(angle))
+    if e1[0] < 0:
+        e1 = (-e1[0], -e1[1])
+    return (cx, cy), e1, (-e1[1], e1[0])
+
+
+def corner_line_profile(pts, geo):
+    """Damage and plastic strain along the line of the obstacle's inner edge, in the block's frame:
+    the band of particles within BAND of the line n = n_c (the obstacle covered the block's -y side
+    up to n_c = -(block width / 2 - obstacle width), before the block turned), binned by the
+    position s along the block's length (front at +length/2). Also a control band at +n_c/2... +
+    (away from the obstacle) for contrast."""
+    (cx, cy), e1, e2 = block_frame(pts)
+    bw, ow = scenes.FL_BLOCK[2], scenes.FL_OBST[2]
+    n_c = -(bw / 2 - ow)
+    rows = []
+    half = scenes.FL_BLOCK[1] / 2
+    nbins = 6
+    for b in range(nbins):
+        s0 = half - (b + 1) * (2 * half / nbins)
+        s1 = s0 + 2 * half / nbins
+        line, ctrl = [], []
+        for q in pts:
+            s = (q["x"] - cx) * e1[0] + (q["y"] - cy) * e1[1]
+            n = (q["x"] - cx) * e2[0] + (q["y"] - cy) * e2[1]
+            if s0 <= s < s1:
+                if abs(n - n_c) < BAND:
+                    line.append(q)
+                elif abs(n + n_c) < BAND:
+                    ctrl.append(q)
+        rows.append((s0, s1, line, ctrl))
+    return math.degrees(math.atan2(e1[1], e1[0])), rows
+
+
 def damage(pts):
     mass = sum(q["m"] for q in pts)
     n = len(pts)
@@ -133,9 +184,17 @@ def energy(diag_csv):
     released = f(last, "particle_potential_released_J")
     ke, fric = f(last, "particle_kinetic_J"), f(last, "particle_friction_work_J")
     visc, art = f(last, "particle_viscous_dissipation_J"), f(last, "particle_art_stress_work_J")
-    return dict(t_end=f(last, "time_s"), peak_ke=f(peak, "particle_kinetic_J"), t_peak=f(peak, "time_s"),
-                released=released, ke=ke, friction=fric, viscous=visc, art=art,
-                rest=released - ke - fric - visc + art)
+    out = dict(t_end=f(last, "time_s"), peak_ke=f(peak, "particle_kinetic_J"), t_peak=f(peak, "time_s"),
+               released=released, ke=ke, friction=fric, viscous=visc, art=art,
+               rest=released - ke - fric - visc + art)
+    # The impact: from the peak of the kinetic energy to the end, each term's change.
+    keys = ("particle_potential_released_J", "particle_kinetic_J", "particle_friction_work_J",
+            "particle_viscous_dissipation_J", "particle_art_stress_work_J")
+    d = {k: f(last, k) - f(peak, k) for k in keys}
+    out["impact"] = dict(released=d[keys[0]], ke_lost=-d[keys[1]], friction=d[keys[2]], viscous=d[keys[3]],
+                         art=d[keys[4]],
+                         rest=d[keys[0]] - d[keys[1]] - d[keys[2]] - d[keys[3]] + d[keys[4]])
+    return out
 
 
 def figure(pts, geo, path, label):
@@ -147,18 +206,25 @@ def figure(pts, geo, path, label):
     cx, cy = geo["corner"]
     xs = [q["x"] - cx for q in pts]
     ys = [q["y"] - geo["yc"] for q in pts]
+    # Plastic strain on a scale up to its 95th percentile (a few squeezed-out particles reach 10-20).
+    plastic = sorted(q["p"] for q in pts)
+    p95 = max(plastic[int(0.95 * (len(plastic) - 1))], 1e-6)
     for ax, key, title, cmap, vmax in ((axes[0], "c", "c / c0", "inferno", 1.0),
-                                       (axes[1], "p", "plastic strain", "viridis", None)):
+                                       (axes[1], "p", f"plastic strain (scale to its 95th percentile)", "viridis", p95)):
         vals = [q[key] for q in pts]
-        sc = ax.scatter(xs, ys, c=vals, s=4, cmap=cmap, vmin=0, vmax=vmax or max(max(vals), 1e-6))
+        sc = ax.scatter(xs, ys, c=vals, s=4, cmap=cmap, vmin=0, vmax=vmax)
         x, y, length, width = geo["rect"]
         ax.add_patch(Rectangle((x - cx, y - geo["yc"]), length, width, fill=False, ec="k", lw=1.2))
+        ax.set_xlim(-0.3, 0.2)
+        ax.set_ylim(-0.2, 0.25)
         ax.set_aspect("equal")
         ax.set_xlabel("x from the slope break [m] (downslope)")
         ax.set_ylabel("y from the channel centre [m]")
-        ax.set_title(f"{label}: {title}")
+        outside = sum(not (-0.3 <= x <= 0.2 and -0.2 <= y <= 0.25) for x, y in zip(xs, ys))
+        ax.set_title(f"{label}: {title}" + (f"\n({outside} particles beyond the frame)" if outside else ""),
+                     fontsize=9)
         fig.colorbar(sc, ax=ax, shrink=0.8)
-    fig.savefig(path, dpi=130)
+    fig.savefig(path, dpi=90)
 
 
 def main():
@@ -182,6 +248,18 @@ def main():
         n, dist, up = connected_reach(final, geo["corner"], test)
         print(f"- {name}, connected to the obstacle's inner corner: {n} particles, reach {100 * dist:.1f} cm, "
               f"{100 * up:.1f} cm upslope into the block ({up / block_len:.2f} of its {100 * block_len:.0f} cm length)")
+    turn, rows = corner_line_profile(final, geo)
+    print(f"\nAlong the obstacle's inner edge, in the block's frame (the block turned by {turn:.0f} degrees;"
+          f" s from its front, bins of {100 * (rows[0][1] - rows[0][0]):.0f} cm; band of +-{100 * BAND:.0f} cm;"
+          " control: the mirrored band on the free side):\n")
+    print("| s from the front (cm) | particles | mean c/c0 | max plastic strain | control mean c/c0 | control max plastic strain |")
+    print("|---|---|---|---|---|---|")
+    front = rows[0][1]
+    for s0, s1, line, ctrl in rows:
+        mean = lambda v: sum(v) / len(v) if v else float("nan")  # noqa: E731
+        print(f"| {100 * (front - s1):.0f}-{100 * (front - s0):.0f} | {len(line)} | {mean([q['c'] for q in line]):.3f} | "
+              f"{max([q['p'] for q in line], default=float('nan')):.3f} | {mean([q['c'] for q in ctrl]):.3f} | "
+              f"{max([q['p'] for q in ctrl], default=float('nan')):.3f} |")
     print("\n| report | t (s) | mean c/c0 | weakened | broken | max speed (m/s) |")
     print("|---|---|---|---|---|---|")
     times = {}
@@ -199,6 +277,11 @@ def main():
           f"{e['peak_ke']:.2f} J at {e['t_peak']:.3f} s; basal friction and walls {e['friction']:.2f} J; artificial "
           f"viscosity {e['viscous']:.2f} J; artificial stress work {e['art']:.3f} J; kinetic energy left "
           f"{e['ke']:.3f} J; remainder (elastic and plastic work, landings) {e['rest']:.2f} J.")
+    i = e["impact"]
+    print(f"\nFrom the peak of the kinetic energy to the end (the impact and after): kinetic energy lost "
+          f"{i['ke_lost']:.2f} J, potential released {i['released']:.2f} J; taken by basal friction and walls "
+          f"{i['friction']:.2f} J, the artificial viscosity {i['viscous']:.2f} J, the elastic and plastic stresses "
+          f"(remainder) {i['rest']:.2f} J; artificial stress work {i['art']:.3f} J.")
     if a.figure:
         figure(final, geo, a.figure, a.label)
         print(f"\nfigure: {a.figure}")
