@@ -51,7 +51,7 @@ inline void add_pair(__constant const ParticleParams* p, ForceSums* acc, int i, 
   const real h = p->h;
   const int cap = p->count;
   const real ai00 = own[0], ai01 = own[1], ai11 = own[2];
-  const real2 g0 = (real2)(fw * dx, fw * dy);  // sph_grad (fw its factor, sph.cl)
+  const real2 g0 = (real2)(fw * dx, fw * dy);  // grad_i W_ij (fw its factor, sph.cl)
   // Stress term: N_i C_i g + N_j C_j g.
   const real ux = ai00 * g0.x + ai01 * g0.y, uy = ai01 * g0.x + ai11 * g0.y;
   const real bj00 = corr[j], bj01 = corr[cap + j], bj11 = corr[2 * cap + j];

@@ -61,6 +61,7 @@ __kernel void particle_stress(__constant const ParticleParams* p, __constant con
   real S = 0;  // the number density sum_j W_ij, i included (particle_density.cl)
   uint found = 0;  // neighbours j != i within the support, listed for particle_forces
   __global uint* list = nb_list + (size_t)i * nb_cap;
+  __global real* grad = nb_grad + (size_t)i * nb_cap;
   FOR_EACH_NEARBY_PARTICLE(ng, cell_start, cell_end, xi, yi, j) {
     const real dx = xi - x[j], dy = yi - y[j], r2 = dx * dx + dy * dy;
     if (r2 >= r2max) continue;
@@ -70,7 +71,7 @@ __kernel void particle_stress(__constant const ParticleParams* p, __constant con
     thickness_add(&th, V[j], A[j], w);
     if (j == (uint)i) continue;
     const real fw = sph_grad_factor_at(r, h);
-    const real2 gw = (real2)(fw * dx, fw * dy);  // sph_grad
+    const real2 gw = (real2)(fw * dx, fw * dy);  // grad_i W_ij
     const real aj = A[j];  // the area the neighbour stands for
     const real du = vx[j] - vxi, dv = vy[j] - vyi;
     g00 += aj * du * gw.x;
@@ -83,7 +84,7 @@ __kernel void particle_stress(__constant const ParticleParams* p, __constant con
     m11 -= aj * dy * gw.y;
     if (found < nb_cap) {
       list[found] = j;
-      nb_grad[(size_t)i * nb_cap + found] = fw;
+      grad[found] = fw;
     }
     ++found;
   }

@@ -36,13 +36,7 @@ inline real sph_dwdr(real r, real h) {
 /// The factor f of grad_i W = f d at distance r = |d|, d = x_i - x_j: dW/dr / r, and 0 at r = 0.
 inline real sph_grad_factor_at(real r, real h) { return r <= (real)0 ? (real)0 : sph_dwdr(r, h) / r; }
 
-/// The same from d.
+/// The same from d = x_i - x_j; grad_i W(|d|, h) = sph_grad_factor(d, h) d.
 inline real sph_grad_factor(real2 d, real h) { return sph_grad_factor_at(sqrt(d.x * d.x + d.y * d.y), h); }
-
-/// grad_i W(|x_i - x_j|, h) for d = x_i - x_j.
-inline real2 sph_grad(real2 d, real h) {
-  const real f = sph_grad_factor(d, h);
-  return (real2)(f * d.x, f * d.y);
-}
 
 #endif

@@ -363,11 +363,12 @@ void ParticleSolver::setParticles(const SeededParticles& seeded, const ParticleM
 
 void ParticleSolver::allocateNeighbourLists() {
   // Room for 1.5 times the neighbours a particle has at the seeding's spacing, pi (2h / spacing)^2
-  // (about 50 at 4 particles per cell and h = dx: 80 entries, 320 bytes). Denser spots than that
-  // (compressed by half in area) walk the grid instead: the same pairs, only slower.
+  // (about 50 at 4 particles per cell and h = dx: 80 entries of an index and a kernel-gradient
+  // factor). Denser spots than that (compressed by half in area) walk the grid instead: the same
+  // pairs, only slower.
   const double expected = spacing_ > 0 ? 3.14159265358979 * std::pow(2 * h_ / spacing_, 2) : 0.0;
-  nbCap_ = static_cast<unsigned>(8 * std::ceil(1.5 * expected / 8));
-  nbCap_ = settings_.neighbourListEntries > 0 ? settings_.neighbourListEntries : std::max(nbCap_, 16u);
+  const unsigned automatic = std::max(static_cast<unsigned>(8 * std::ceil(1.5 * expected / 8)), 16u);
+  nbCap_ = settings_.neighbourListEntries > 0 ? settings_.neighbourListEntries : automatic;
   nbList_ = compute::Buffer<cl_uint>(ctx_, capacity_ * nbCap_, "particle neighbour lists");
   nbCount_ = compute::Buffer<cl_uint>(ctx_, capacity_, "particle neighbour counts");
   nbGrad_ = compute::RealBuffer(ctx_, capacity_ * nbCap_, "particle neighbour kernel gradients");

@@ -53,9 +53,10 @@ double bytesPerParticle(const std::string& precision) {
   const double real = precision == "double" ? 8.0 : 4.0;
   // Device: the solver's 32 per-particle fields, 5 sub-step tallies, 5 totals, 3 gradient-correction
   // and 3 artificial-stress components (particles/ParticleSolver.cpp, setParticles), the neighbour
-  // sort's keys, values and scratch (4 words), and the neighbour list with its count (80 + 1 words
-  // at 4 particles per cell and h = dx, allocateNeighbourLists; more with more neighbours).
-  const double device = 48 * real + 16 + 81 * 4;
+  // sort's keys, values and scratch (4 words), and the neighbour list: 80 indices and 80 kernel-gradient
+  // factors with a count at 4 particles per cell and h = dx (allocateNeighbourLists; more with more
+  // neighbours).
+  const double device = 48 * real + 16 + 81 * 4 + 80 * real;
   // Host, at the peak of a report: the seeding and material arrays (12 doubles), the downloaded
   // state (30 doubles), a checkpoint's copy (24 reals) and a layer's attribute columns (15 doubles).
   const double host = (12 + 30 + 15) * 8.0 + 24 * real;

@@ -12,10 +12,10 @@ Printed (Markdown):
 - damage at the end: mass-weighted mean c/c0 and the particle shares weakened (c/c0 < 0.99), below
   half (< 0.5) and broken (< 0.1), as docs/scenes.md counts them;
 - the crack: the damaged particles (c/c0 < 0.5) connected to the obstacle's inner upslope corner
-  (neighbours within LINK m, seeds within SEED m of the corner), their reach from the corner and
-  upslope into the block, against the block's length; the same for the plastic shear band
-  (plastic strain > PLASTIC), since with a dilatancy angle of 0 pure shear yields without
-  degrading the bonds (spec P.26);
+  (neighbours within LINK m, seeds within SEED m of the corner) and their reach from it; the same
+  for the plastically sheared particles (plastic strain > PLASTIC), since with a dilatancy angle
+  of 0 pure shear yields without degrading the bonds (spec P.26); and both along the line of the
+  obstacle's inner edge in the block's own frame (the block turns about the obstacle);
 - damage per report layer (when it happened);
 - the energy budget from diagnostics.csv: potential energy released, peak kinetic energy (the
   impact), the work of basal friction and wall contacts, the artificial viscosity's dissipation
@@ -96,7 +96,7 @@ def geometry(scene_dir):
 
 
 def connected_reach(pts, corner, damaged):
-    """Reach of the damaged particles connected to the corner: (count, max distance, max upslope)."""
+    """The damaged particles connected to the corner: (count, largest distance from the corner)."""
     cx, cy = corner
     idx = [k for k, q in enumerate(pts) if damaged(q)]
     cell = {}
@@ -114,10 +114,8 @@ def connected_reach(pts, corner, damaged):
                         seen.add(n)
                         stack.append(n)
     if not seen:
-        return 0, 0.0, 0.0
-    dist = max(math.hypot(pts[k]["x"] - cx, pts[k]["y"] - cy) for k in seen)
-    upslope = max(cx - pts[k]["x"] for k in seen)
-    return len(seen), dist, max(upslope, 0.0)
+        return 0, 0.0
+    return len(seen), max(math.hypot(pts[k]["x"] - cx, pts[k]["y"] - cy) for k in seen)
 
 
 def block_frame(pts):
@@ -143,9 +141,9 @@ def block_frame(pts):
 def corner_line_profile(pts, geo):
     """Damage and plastic strain along the line of the obstacle's inner edge, in the block's frame:
     the band of particles within BAND of the line n = n_c (the obstacle covered the block's -y side
-    up to n_c = -(block width / 2 - obstacle width), before the block turned), binned by the
-    position s along the block's length (front at +length/2). Also a control band at +n_c/2... +
-    (away from the obstacle) for contrast."""
+    up to n_c = -(block width / 2 - obstacle width) before the block turned), binned by the position
+    s along the block's length (front at +length/2); and the mirrored band n = -n_c on the free side
+    as a control."""
     (cx, cy), e1, e2 = block_frame(pts)
     bw, ow = scenes.FL_BLOCK[2], scenes.FL_OBST[2]
     n_c = -(bw / 2 - ow)
@@ -245,9 +243,9 @@ def main():
           f"{100 * d['plastic']:.1f} % |\n")
     for name, test in (("damaged (c/c0 < 0.5)", lambda q: q["c"] < HALF),
                        ("sheared (plastic strain > 0.01)", lambda q: q["p"] > PLASTIC)):
-        n, dist, up = connected_reach(final, geo["corner"], test)
-        print(f"- {name}, connected to the obstacle's inner corner: {n} particles, reach {100 * dist:.1f} cm, "
-              f"{100 * up:.1f} cm upslope into the block ({up / block_len:.2f} of its {100 * block_len:.0f} cm length)")
+        n, dist = connected_reach(final, geo["corner"], test)
+        print(f"- {name}, connected to the obstacle's inner corner: {n} particles, reaching {100 * dist:.1f} cm "
+              f"from it (the block is {100 * block_len:.0f} cm long; its frame: the table below)")
     turn, rows = corner_line_profile(final, geo)
     print(f"\nAlong the obstacle's inner edge, in the block's frame (the block turned by {turn:.0f} degrees;"
           f" s from its front, bins of {100 * (rows[0][1] - rows[0][0]):.0f} cm; band of +-{100 * BAND:.0f} cm;"
