@@ -186,6 +186,8 @@ def fmt(v, spec):
 
 TALUS_LABEL = {"float": "Talus float, slope corr. on (default)", "double": "Talus double, slope corr. on",
                "float_sc0": "Talus float, slope corr. off", "double_sc0": "Talus double, slope corr. off",
+               "float_sc0_split": "Talus float, slope corr. off, split sweeps (CFL 0.5)",
+               "float_sc0_split_cfl09": "Talus float, slope corr. off, split sweeps, CFL 0.9 (draining)",
                "geoclaw": "GeoClaw (dry tol. 1e-6 m, as Talus)",
                "geoclaw_dry1e-3": "GeoClaw (dry tol. 1e-3 m, its default)"}
 
@@ -229,7 +231,8 @@ def main():
         P("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
         href, dxr = hmax_map(work, ref_key, S[ref_key])
         rows = [k for k in S if "/kot_r5/" in k]
-        order = ["float", "double", "float_sc0", "double_sc0", "geoclaw", "geoclaw_dry1e-3"]
+        order = ["float", "double", "float_sc0", "double_sc0", "float_sc0_split", "float_sc0_split_cfl09", "geoclaw",
+                 "geoclaw_dry1e-3"]
         kot_vols = {}
         rows.sort(key=lambda k: (order.index(k.split("/")[2]), k.split("/")[3]))
         kot = {}

@@ -31,6 +31,10 @@ TALUS_CONFIGS = {
     "double":         ["Precision=double"],
     "float_sc0":      ["Precision=float", "Slope Correction=0"],
     "double_sc0":     ["Precision=double", "Slope Correction=0"],
+    # the dimensionally split sweeps (per-direction CFL), at the Courant number 1/2 and at 0.9 (above
+    # 1/2 positive by the draining time, kernels/flow/stage.cl); GeoClaw's desired Courant number is 0.9
+    "float_sc0_split":       ["Precision=float", "Slope Correction=0", "Time Scheme=split"],
+    "float_sc0_split_cfl09": ["Precision=float", "Slope Correction=0", "Time Scheme=split", "CFL=0.9"],
 }
 GRID_TALUS_CONFIG = os.environ.get("PEERS_GRID_TALUS_CONFIG", "float_sc0")
 
@@ -221,7 +225,7 @@ def cmd_kot(args):
     work = os.path.abspath(args.work)
     runfile = os.path.join(work, "grids", "r5", "talus.run")
     tj = []
-    configs = ["float", "double", "float_sc0", "double_sc0"]
+    configs = ["float", "double", "float_sc0", "double_sc0", "float_sc0_split", "float_sc0_split_cfl09"]
     for c in configs:
         tj.append(talus_job(work, "kot_r5", c, 1, runfile))
     for c in ["float", "double"]:

@@ -9,22 +9,57 @@
 // and the centred term (g_p - g_n) h db/dx, zero unless the cos^4 depth-pressure option makes g_p
 // differ from g_n (spec §1).
 //
-// One work-group per active tile (TILE x TILE work-items). The tile and a halo of two cells are read
-// once into local memory; each work-item reconstructs its cell and its four neighbours and computes
-// its four faces. A face is computed by both cells beside it with the same function on the same
-// values, so both see the bitwise same flux (contraction is off, see common/real.cl) and interior
-// fluxes cancel exactly. Work-items outside the domain only help loading.
+// One work-group per active tile (TILE x TILE work-items), in three phases:
+// 1. the tile and a halo of HALO cells are read once into local memory;
+// 2. every face the tile needs is computed once, by one work-item, into local memory (a face used
+//    to be computed by both cells beside it; the function and its inputs are the same, so the
+//    results are bitwise those of the two-sided evaluation, and interior fluxes cancel exactly);
+// 3. each work-item sums its cell's faces and sources and writes the update.
+// Work-items outside the domain help with phases 1 and 2 and stop before phase 3.
 // The volume that leaves through boundary faces [m^3] goes to out_step[cell] with weight w_out
 // (dt/2 per stage, assigned in the step's first stage and added in the others).
 //
 // dir_mask selects the directions whose faces the stage computes: 3 (both) for the unsplit scheme;
 // 1 (x) or 2 (y) for one sweep of the dimensionally split scheme (Time Scheme=split, Strang 1968
-// with the sweep order alternated between steps), whose two 1D SSP-RK2 sweeps are each positive and
-// well-balanced under a Courant number of 1/2 in their own direction.
+// with the sweep order alternated between steps). A forward-Euler stage of the second-order scheme
+// is positive when dt (|u| + c) / dx <= 1/2 along each direction with both directions' faces taken
+// together (unsplit) or along the sweep (split): the reconstruction splits a cell's thickness into
+// face values h_lo + h_hi = 2h, each of which may drain through its face within the step (Audusse et
+// al. 2004, thm. 2.1). The bound holds for the speeds of the face states, the time step uses the
+// cells' (a face thickness up to 2h has up to sqrt(2) times its cell's c); the unsplit scheme's sum
+// over both directions leaves margin, the split sweeps have none (a soak found a film on a 14 x 2
+// grid that gained 75 % of its volume in one split step at Courant number 1/2).
+//
+// DRAINING (build option; on for the split sweeps, which then take Courant numbers up to 1):
+// positivity by the draining time of Bollermann, Noelle & Lukacova-Medvidova (2011, Commun. Comput.
+// Phys. 10, eq. 3.5; Bollermann et al. 2013, SIAM J. Sci. Comput. 35, sec. 3.3). A cell whose
+// outgoing mass fluxes O (per unit width, over its two faces of the sweep) would take more than it
+// holds within the stage, dt O / dx > h, empties in its draining time h dx / O < dt; every flux out
+// of it is scaled by theta = h dx / (dt O), the fraction of the stage in which it still has water.
+// A face's mass flux and its advective momentum fluxes (normal and tangential) take the theta of the
+// face's upwind cell (by the sign of its mass flux); the hydrostatic pressure and the bed-jump
+// corrections are not transport and stay, so a lake at rest (no mass flux, theta = 1) is untouched.
+// Then h + dt/dx (inflow - theta O) >= h - h = 0 at any Courant number, and where no cell drains
+// (theta = 1 everywhere) the stage is the plain one bit for bit. The stability limit is then that of
+// the wave speeds, Courant number 1 per sweep. theta needs the outflow of the tile's neighbour cells
+// along the sweep, hence one more halo cell.
 #include "flow/riemann.cl"
 
+#ifndef DRAINING
+#define DRAINING 0
+#endif
+#if DRAINING
+#define HALO 3
+#define RING 1        // cells beyond the tile, along the sweep, whose draining factor is needed
+#define FACE_SLOTS 1  // one direction per launch (the split scheme's sweeps)
+#else
 #define HALO 2
+#define RING 0
+#define FACE_SLOTS 2
+#endif
 #define SPAN (TILE + 2 * HALO)
+#define NFA (TILE + 1 + 2 * RING)  // faces per row along a direction
+#define NFACE (NFA * TILE)         // faces per direction
 
 /// Primitive state of the cell at local position (a, b) of the tile + halo block, along `dir`.
 inline Prim local_prim(__local const real* lh, __local const real* le, __local const real* lu,
@@ -52,6 +87,13 @@ inline CellFaces local_faces(__local const real* lh, __local const real* le, __l
 inline Side side_hi(CellFaces f, real g) { Side s = {f.h_hi, f.e_hi, f.un_hi, f.ut_hi, g}; return s; }
 inline Side side_lo(CellFaces f, real g) { Side s = {f.h_lo, f.e_lo, f.un_lo, f.ut_lo, g}; return s; }
 
+/// Local position of the minus-side cell of face q in row r along `dir` (the plus side is the next
+/// cell along `dir`). Face q = RING + t + 1 is the plus face of the tile's cell t of that row.
+inline int2 face_minus_cell(int q, int r, int dir) {
+  const int along = HALO - RING + q - 1, across = HALO + r;
+  return dir == 0 ? (int2)(along, across) : (int2)(across, along);
+}
+
 __kernel __attribute__((reqd_work_group_size(TILE, TILE, 1)))
 void flow_stage(__constant const FlowParams* p, __global const uchar* mask, __global const int* tile_list,
                 __global const real* b, __global const real* gp, __global const real* gn,
@@ -61,11 +103,18 @@ void flow_stage(__constant const FlowParams* p, __global const uchar* mask, __gl
                 const real dt, const real a, const real w_out, const int first_stage, const int dir_mask) {
   __local real lh[SPAN * SPAN], le[SPAN * SPAN], lu[SPAN * SPAN], lv[SPAN * SPAN], lg[SPAN * SPAN];
   __local uchar lin[SPAN * SPAN];
+  // The faces (Face of riemann.cl, one array per member), per direction slot.
+  __local real ffh[FACE_SLOTS * NFACE], ffqn[FACE_SLOTS * NFACE], ffqt[FACE_SLOTS * NFACE],
+      ffp[FACE_SLOTS * NFACE], ffcm[FACE_SLOTS * NFACE], ffcp[FACE_SLOTS * NFACE];
+#if DRAINING
+  __local real theta[(TILE + 2 * RING) * TILE];  // draining factors of the cells along the sweep
+#endif
   const int tile = tile_list[get_group_id(0)];
   const int x0 = (tile % p->tiles_x) * TILE - HALO, y0 = (tile / p->tiles_x) * TILE - HALO;
   const int lid = get_local_id(1) * TILE + get_local_id(0);
+  const real dtdx = dt / p->dx;
 
-  // Tile and halo into local memory: h, eta = h + b, u, v, g_p and the inside flag.
+  // 1. Tile and halo into local memory: h, eta = h + b, u, v, g_p and the inside flag.
   for (int s = lid; s < SPAN * SPAN; s += TILE * TILE) {
     const int gi = x0 + s % SPAN, gj = y0 + s / SPAN;
     const int in = cell_inside(p, mask, gi, gj);
@@ -84,13 +133,71 @@ void flow_stage(__constant const FlowParams* p, __global const uchar* mask, __gl
   }
   barrier(CLK_LOCAL_MEM_FENCE);
 
-  const int la = get_local_id(0) + HALO, lb = get_local_id(1) + HALO;
+  // 2. Each face once. An outside side is replaced by the ghost of the inside one (face_between);
+  // at a level edge the outside is water at the inside cell's far level (its initial surface).
+  for (int dir = 0; dir < 2; ++dir) {
+    if (!((dir_mask >> dir) & 1)) continue;
+    const int da = dir == 0, db = dir == 1, slot = FACE_SLOTS == 1 ? 0 : dir;
+    for (int f = lid; f < NFACE; f += TILE * TILE) {
+      const int q = f % NFA, r = f / NFA;
+      const int2 cm = face_minus_cell(q, r, dir);
+      const int am = cm.x, bm = cm.y, ap = am + da, bp = bm + db;
+      const int sm = bm * SPAN + am, sp = bp * SPAN + ap;
+      const int m_in = lin[sm], p_in = lin[sp];
+      Face fc = {0, 0, 0, 0, 0, 0};
+      if (m_in || p_in) {
+        const CellFaces mf = local_faces(lh, le, lu, lv, lin, m_in ? am : ap, m_in ? bm : bp, dir);
+        const CellFaces pf = p_in ? local_faces(lh, le, lu, lv, lin, ap, bp, dir) : mf;
+        const int outside_a = m_in ? ap : am, outside_b = m_in ? bp : bm;
+        const real far = (m_in && p_in) ? (real)0 : far_level[cell_index(p, x0 + (m_in ? am : ap), y0 + (m_in ? bm : bp))];
+        fc = face_between(m_in, side_hi(mf, lg[sm]), p_in, side_lo(pf, lg[sp]),
+                          boundary_kind(p, x0 + outside_a, y0 + outside_b), far);
+      }
+      const int o = slot * NFACE + f;
+      ffh[o] = fc.fh;
+      ffqn[o] = fc.fqn;
+      ffqt[o] = fc.fqt;
+      ffp[o] = fc.p;
+      ffcm[o] = fc.corr_m;
+      ffcp[o] = fc.corr_p;
+    }
+  }
+  barrier(CLK_LOCAL_MEM_FENCE);
+
+#if DRAINING
+  // 2b. Draining factors of the cells along the sweep (the tile's and one beyond each end), then
+  // each face the tile uses scaled by its upwind cell's factor (see the header).
+  {
+    const int dir = (dir_mask & 1) ? 0 : 1;
+    for (int c = lid; c < (TILE + 2 * RING) * TILE; c += TILE * TILE) {
+      const int t = c % (TILE + 2 * RING), r = c / (TILE + 2 * RING);
+      const int2 cell = face_minus_cell(t + 1, r, dir);  // the plus side of face t is cell t
+      const int s = cell.y * SPAN + cell.x;
+      const real out_flux = fmax(ffh[r * NFA + t + 1], (real)0) - fmin(ffh[r * NFA + t], (real)0);
+      const real h = lh[s];
+      theta[c] = (lin[s] && dtdx * out_flux > h) ? h / (dtdx * out_flux) : (real)1;
+    }
+    barrier(CLK_LOCAL_MEM_FENCE);
+    for (int f = lid; f < NFACE; f += TILE * TILE) {
+      const int q = f % NFA, r = f / NFA;
+      if (q < RING || q > TILE + RING) continue;  // faces only the ring cells use
+      const real th = theta[r * (TILE + 2 * RING) + (ffh[f] > (real)0 ? q - 1 : q)];
+      ffh[f] *= th;
+      ffqn[f] *= th;
+      ffqt[f] *= th;
+    }
+    barrier(CLK_LOCAL_MEM_FENCE);
+  }
+#endif
+
+  // 3. The update of the work-item's own cell.
+  const int tx = get_local_id(0), ty = get_local_id(1);
+  const int la = tx + HALO, lb = ty + HALO;
   const int i = x0 + la, j = y0 + lb;
   const int sc = lb * SPAN + la;
   if (!lin[sc]) return;  // off the raster or nodata (no barrier follows)
   const int k = cell_index(p, i, j);
   const real g = lg[sc];
-  const real dtdx = dt / p->dx;
 
   // Per direction: mass flux difference, normal and tangential momentum terms. The two directions
   // are added only at the end, with commutative sums, so a scene and its x<->y transpose give
@@ -104,31 +211,25 @@ void flow_stage(__constant const FlowParams* p, __global const uchar* mask, __gl
     const int da = dir == 0, db = dir == 1;
     const int sm = sc - db * SPAN - da, sp = sc + db * SPAN + da;
     const int m_in = lin[sm], p_in = lin[sp];
-    const CellFaces own = local_faces(lh, le, lu, lv, lin, la, lb, dir);
-    CellFaces nb = own;
-    if (m_in) nb = local_faces(lh, le, lu, lv, lin, la - da, lb - db, dir);
-    // At a level edge the outside is still water at the cell's far level (its initial surface); only
-    // cells beside an outside cell read it.
-    const real far = (m_in && p_in) ? (real)0 : far_level[k];
-    const Face fm = face_between(m_in, side_hi(nb, lg[sm]), 1, side_lo(own, g), boundary_kind(p, i - da, j - db), far);
-    nb = own;
-    if (p_in) nb = local_faces(lh, le, lu, lv, lin, la + da, lb + db, dir);
-    const Face fp = face_between(1, side_hi(own, g), p_in, side_lo(nb, lg[sp]), boundary_kind(p, i + da, j + db), far);
+    // The cell's minus and plus faces: row and position along the direction.
+    const int row = dir == 0 ? ty : tx, along = dir == 0 ? tx : ty;
+    const int om = (FACE_SLOTS == 1 ? 0 : dir) * NFACE + row * NFA + RING + along, op = om + 1;
 
-    mass[dir] = fp.fh - fm.fh;
+    mass[dir] = ffh[op] - ffh[om];
     // Normal momentum: advective flux, pressure with the cell's own g_p, hydrostatic corrections,
     // and the centred well-balanced bed source from the cell's own reconstruction.
-    real s = (fp.fqn + g * (fp.p + fp.corr_m)) - (fm.fqn + g * (fm.p + fm.corr_p));
+    real s = (ffqn[op] + g * (ffp[op] + ffcm[op])) - (ffqn[om] + g * (ffp[om] + ffcp[om]));
     if (lh[sc] > (real)0) {
+      const CellFaces own = local_faces(lh, le, lu, lv, lin, la, lb, dir);
       s += g * (real)0.5 * (own.h_lo + own.h_hi) * ((own.e_hi - own.h_hi) - (own.e_lo - own.h_lo));
       const real dg = g - gn[k];  // exactly zero with the default depth pressure (g_p == g_n)
       if (dg != (real)0 && m_in && p_in)
         s -= dg * lh[sc] * (real)0.5 * ((le[sp] - lh[sp]) - (le[sm] - lh[sm]));
     }
     normal[dir] = s;
-    tangential[dir] = fp.fqt - fm.fqt;  // moves the other direction's momentum
-    if (!m_in) out -= fm.fh;
-    if (!p_in) out += fp.fh;
+    tangential[dir] = ffqt[op] - ffqt[om];  // moves the other direction's momentum
+    if (!m_in) out -= ffh[om];
+    if (!p_in) out += ffh[op];
   }
   const real dh = -dtdx * (mass[0] + mass[1]);
   const real dq[2] = {-dtdx * (normal[0] + tangential[1]), -dtdx * (normal[1] + tangential[0])};
@@ -141,7 +242,8 @@ void flow_stage(__constant const FlowParams* p, __global const uchar* mask, __gl
     qxn = a * qx_base[k] + ((real)1 - a) * qxn;
     qyn = a * qy_base[k] + ((real)1 - a) * qyn;
   }
-  // Positivity holds under the CFL condition; a negative value can only be round-off.
+  // Positivity holds under the CFL condition (or by the draining factors); a negative value can
+  // only be round-off.
   if (hn <= p->h_dry) {
     qxn = 0;
     qyn = 0;

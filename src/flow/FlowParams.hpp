@@ -25,5 +25,9 @@ static_assert(offsetof(FlowParamsT<double>, dx) == 32 && sizeof(FlowParamsT<doub
 
 /// Tile edge in cells (kernels built with -DTILE=kTile); a tile is one work-group of the diagnostics.
 inline constexpr int kTile = 16;
+/// The Courant number up to which the unsplit second-order stage is positive by itself (Audusse et
+/// al. 2004, thm. 2.1); the split sweeps limit draining cells' fluxes and take up to 1
+/// (kernels/flow/stage.cl).
+inline constexpr double kPositiveCfl = 0.5;
 
 }  // namespace talus::flow

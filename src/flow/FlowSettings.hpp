@@ -18,7 +18,7 @@ enum class Boundary { Wall = 0, Open = 1, Level = 2 };
 enum class DepthPressure { Cos2, Cos4 };
 /// Time integration of the water: SSP-RK2 over both directions' faces at once (CFL over the sum of
 /// the two directions' wave speeds), or dimensionally split sweeps, one SSP-RK2 per direction with
-/// the order alternated between steps (CFL per direction; kernels/flow/stage.cl).
+/// the order alternated between steps (CFL per direction, up to 1; kernels/flow/stage.cl).
 enum class TimeScheme { Unsplit = 0, Split = 1 };
 
 enum class EarthPressure { SavageHutter = 0, Constant = 1 };
@@ -63,7 +63,8 @@ struct FlowSettings {
   Limiter limiter = Limiter::MC;  // on the accuracy-per-cost front (docs/validation_parts/pareto.md)
   RiemannSolver riemann = RiemannSolver::HLLC;
   TimeScheme scheme = TimeScheme::Unsplit;  ///< water only; the two-phase model is unsplit
-  /// dt = cfl * dx / max((|u| + c + w) + (|v| + c + w)); split: cfl * dx / max(max(|u|, |v|) + c + w)
+  /// dt = cfl * dx / max((|u| + c + w) + (|v| + c + w)), at most 0.5; split: cfl * dx / max(max(|u|, |v|)
+  /// + c + w), at most 1 (positive by the draining time, kernels/flow/stage.cl)
   double cfl = 0.5;
   double hDry = 1e-6;               ///< [m] below this, velocities are zero
   double arrivalH = 0.01;           ///< [m] thickness that marks arrival

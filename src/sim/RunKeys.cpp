@@ -219,9 +219,10 @@ void addSourceKeys(KeyRegistry& r) {
 
 void addNumericsKeys(KeyRegistry& r) {
   Section(r, "Numerics")
-      << real("CFL", "0.5", "-", 0.01, 0.5,
-              "Courant number over the sum of both directions' wave speeds, or per direction with Time Scheme=split "
-              "(0.5 keeps the scheme positive)")
+      << real("CFL", "0.5", "-", 0.01, 1.0,
+              "Courant number over the sum of both directions' wave speeds (at most 0.5, which keeps the scheme "
+              "positive), or per direction with Time Scheme=split (up to 1: the split sweeps stay positive by the "
+              "draining time; GeoClaw's default is 0.9)")
       << choice("Time Scheme", {"unsplit", "split"}, "unsplit",
                 "water: SSP-RK2 over both directions at once, or dimensionally split sweeps with a per-direction "
                 "time step (about half the steps where the flow is not along one axis; two-phase runs are unsplit)")

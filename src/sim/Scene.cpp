@@ -9,6 +9,7 @@
 
 #include "core/Error.hpp"
 #include "core/Memory.hpp"
+#include "flow/FlowParams.hpp"
 #include "sim/RunMemory.hpp"
 #include "sim/RunTimes.hpp"
 
@@ -300,9 +301,6 @@ Scene loadScene(const io::RunConfig& cfg) {
     f.entrainment.growthRate = cfg.real("Entrainment Growth Rate");
     f.twoPhase = true;  // entrained material joins the solids (default properties where none were)
   }
-  if (f.twoPhase && f.scheme == flow::TimeScheme::Split)
-    throw InputError(cfg.origin("Time Scheme") + ": key 'Time Scheme': 'split' is for water-only runs; this run "
-                     "has solids (the two-phase model runs unsplit)");
   if (s.particles.enabled) {
     particles::ParticleSettings& ps = s.particles.settings;
     setElasticity(cfg, ps);
@@ -350,6 +348,15 @@ Scene loadScene(const io::RunConfig& cfg) {
   f.riemann = flow::parseRiemann(cfg.choice("Riemann Solver"));
   f.cfl = cfg.real("CFL");
   f.scheme = flow::parseTimeScheme(cfg.choice("Time Scheme"));
+  if (f.twoPhase && f.scheme == flow::TimeScheme::Split)
+    throw InputError(cfg.origin("Time Scheme") + ": key 'Time Scheme': 'split' is for water-only runs; this run "
+                     "has solids (the two-phase model runs unsplit)");
+  if (f.cfl > flow::kPositiveCfl && f.scheme != flow::TimeScheme::Split) {
+    std::ostringstream o;
+    o << cfg.origin("CFL") << ": key 'CFL': " << f.cfl << " is above 0.5, where the unsplit scheme is no longer "
+      << "positive; Courant numbers up to 1 need Time Scheme=split (water only)";
+    throw InputError(o.str());
+  }
   f.hDry = cfg.real("Minimum Flow Height");
   f.arrivalH = cfg.real("Arrival Threshold");
   f.edge = flow::parseBoundary(cfg.choice("Boundary Type"));

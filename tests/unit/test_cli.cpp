@@ -139,7 +139,7 @@ TEST_F(Cli, SetOutOfRangeExits2NamingRange) {
   const Outcome r = talus("run case.run --set \"CFL=5\"");
   EXPECT_EQ(r.status, 2) << r;
   EXPECT_TRUE(contains(r.err, "CFL")) << r;
-  EXPECT_TRUE(contains(r.err, "[0.01, 0.5]")) << r;
+  EXPECT_TRUE(contains(r.err, "[0.01, 1]")) << r;
   EXPECT_TRUE(contains(r.err, "command line")) << r;
 }
 

@@ -186,7 +186,7 @@ TEST_F(RunFile, BadNumbers) {
 TEST_F(RunFile, ValueOutOfRangeStatesRangeAndUnit) {
   const std::string msg = errorOf("DEM=1\nCFL=2\n");
   EXPECT_TRUE(contains(msg, "case.run:2: key 'CFL'")) << msg;
-  EXPECT_TRUE(contains(msg, "[0.01, 0.5]")) << msg;
+  EXPECT_TRUE(contains(msg, "[0.01, 1]")) << msg;
   const std::string h = errorOf("DEM=1\nInitial Fluid Height=-1\n");
   EXPECT_TRUE(contains(h, "case.run:2: key 'Initial Fluid Height'")) << h;
   EXPECT_TRUE(contains(h, "[0, 10000] m")) << h;
@@ -324,7 +324,7 @@ TEST_F(RunFile, SetOverridesAndValidates) {
   };
   const std::string range = messageOf("CFL=5");
   EXPECT_TRUE(contains(range, "command line --set: key 'CFL'")) << range;
-  EXPECT_TRUE(contains(range, "[0.01, 0.5]")) << range;
+  EXPECT_TRUE(contains(range, "[0.01, 1]")) << range;
   EXPECT_DOUBLE_EQ(c.real("CFL"), 0.3);  // unchanged after a rejected override
   EXPECT_TRUE(contains(messageOf("Maning=0.1"), "did you mean 'Manning'"));
   EXPECT_TRUE(contains(messageOf("CFL"), "command line --set"));
@@ -376,7 +376,7 @@ TEST_F(RunFile, RegistryIntegerKeysRulesAndTable) {
   EXPECT_EQ(talus::io::describeKeys(talusRunKeys()).rfind(table, 0), 0u);  // the OpenLISEM table follows
   EXPECT_TRUE(contains(table, "### Numerics")) << table;
   EXPECT_TRUE(contains(table, "| `DEM` | map | (required) | m |")) << table;
-  EXPECT_TRUE(contains(table, "| `CFL` | real | 0.5 | - | [0.01, 0.5] |")) << table;
+  EXPECT_TRUE(contains(table, "| `CFL` | real | 0.5 | - | [0.01, 1] |")) << table;
   for (const char* name : {"Map Directory", "DEM", "Include Initial Water", "Initial Fluid Height", "Manning",
                            "Start Time", "End Time", "Timestep", "CFL", "Limiter", "Riemann Solver", "Precision",
                            "Device", "Boundary Type", "Nodata Boundary Type", "Slope Correction",

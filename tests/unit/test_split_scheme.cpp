@@ -1,16 +1,25 @@
 // The dimensionally split time scheme (FlowSettings::scheme = Split, run-file key Time Scheme):
 // its sweep order alternates between steps, so the order of the next step is state, and a solver
 // restored from a checkpoint taken after an odd number of steps must continue with the same order
-// (bitwise the run that did not stop); the key reaches the solver and is refused for two-phase runs.
+// (bitwise the run that did not stop); the key reaches the solver and is refused for two-phase runs;
+// a CFL above 1/2 is taken by the split sweeps only (kernels/flow/stage.cl, draining time), and a
+// run-file that asks otherwise is refused with the key named.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <string>
 #include <vector>
 
 #include "core/Constants.hpp"
 #include "core/Error.hpp"
+#include "core/Raster.hpp"
 #include "flow/FlowSolver.hpp"
+#include "io/RasterIO.hpp"
+#include "io/RunConfig.hpp"
+#include "sim/RunKeys.hpp"
+#include "sim/Scene.hpp"
 #include "support/FlowScene.hpp"
 #include "support/TestDevice.hpp"
 
@@ -86,6 +95,31 @@ TEST(SplitScheme, TwoPhaseRunsAreRefused) {
   s.scheme = fl::TimeScheme::Split;
   s.twoPhase = true;
   EXPECT_THROW(fl::FlowSolver(talus::test::testContext(Precision::Double), g, s), talus::InputError);
+}
+
+TEST(SplitScheme, RunFilesAskingForWhatTheSchemesCannotDoAreRefusedByKey) {
+  const auto dir = std::filesystem::temp_directory_path() / "talus_split_scheme_keys";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  talus::io::writeRaster((dir / "dem.tif").string(), talus::Raster(Grid::make(10, 8, 1.0), 0.0));
+  const auto load = [&](const std::string& extra) {
+    const std::string text = "DEM=dem.tif\nEnd Time=0.01\n" + extra;
+    return talus::sim::loadScene(
+        talus::io::RunConfig::fromText(text, dir.string(), talus::sim::talusRunKeys(), "keys.run"));
+  };
+  const auto refusedFor = [&](const std::string& extra, const std::string& key) {
+    try {
+      load(extra);
+      ADD_FAILURE() << "accepted: " << extra;
+    } catch (const talus::InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("key '" + key + "'"), std::string::npos) << e.what();
+    }
+  };
+  EXPECT_EQ(load("Time Scheme=split\nCFL=0.9\n").settings.cfl, 0.9);
+  EXPECT_EQ(load("CFL=0.5\n").settings.cfl, 0.5);
+  refusedFor("CFL=0.9\n", "CFL");                   // unsplit: positive only up to 1/2
+  refusedFor("Time Scheme=split\nCFL=1.1\n", "CFL");  // beyond the sweeps' stability limit
+  refusedFor("Time Scheme=split\nInclude Initial Solids=1\nInitial Solid Height=0.5\n", "Time Scheme");
 }
 
 TEST(SplitScheme, StableStepIsPerDirection) {

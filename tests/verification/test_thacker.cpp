@@ -40,7 +40,7 @@ struct ThackerErrors {
   double seconds = 0;
 };
 
-ThackerErrors runThacker(int n, fl::TimeScheme scheme = fl::TimeScheme::Unsplit) {
+ThackerErrors runThacker(int n, fl::TimeScheme scheme = fl::TimeScheme::Unsplit, double cfl = 0.5) {
   const an::ThackerPlanar th;  // SWASHES parameters
   const double dx = kDomain / n;
   const Grid grid = Grid::make(n, n, dx);
@@ -53,6 +53,7 @@ ThackerErrors runThacker(int n, fl::TimeScheme scheme = fl::TimeScheme::Unsplit)
   settings.edge = fl::Boundary::Wall;
   settings.slopeCorrection = false;  // the exact solution is for classical SWE with g
   settings.scheme = scheme;
+  settings.cfl = cfl;
   const double period = th.period();
   const auto run = talus::test::runFlow(grid, input, settings, talus::test::RunLimits::until(period));
   EXPECT_NEAR(run.time, period, 1e-12 * period);
@@ -181,4 +182,26 @@ TEST(Thacker, SplitSchemeOnePeriod) {
   EXPECT_LT(split[1].steps, 0.7 * unsplit.steps);
   RecordProperty("thacker_split_l1_h_100", std::to_string(split[1].errH));
   RecordProperty("thacker_split_steps_100", std::to_string(split[1].steps));
+}
+
+// The split sweeps at a Courant number of 0.9 (GeoClaw's default), above the 1/2 of their positivity
+// proof: the shoreline cells that empty within a stage have their outflow limited by the draining
+// time (kernels/flow/stage.cl). Volume is kept to round-off, and the errors stay those of CFL 0.5
+// within the same 25 % margin as above (the time error is of higher order than the shoreline's
+// first-order space error), in under 0.65 of the steps (dt grows by 0.9/0.5, the step count falls by
+// less, as the largest speed of the flow it meets differs from step to step: 0.596 of the steps
+// measured).
+TEST(Thacker, SplitSchemeAtCourantNumberNineTenths) {
+  const ThackerErrors half = runThacker(100, fl::TimeScheme::Split);
+  const ThackerErrors nine = runThacker(100, fl::TimeScheme::Split, 0.9);
+  std::printf("[ Thacker planar, split, 100^2 ] CFL 0.5: L1(h) %.4e m^3, centre %.4e m, %d steps; CFL 0.9: L1(h) %.4e "
+              "m^3, centre %.4e m, %d steps\n",
+              half.errH, half.errCentre, half.steps, nine.errH, nine.errCentre, nine.steps);
+  EXPECT_LT(nine.volumeDrift, kVolumeTol);
+  EXPECT_LT(nine.hostVolumeDrift, kVolumeTol);
+  EXPECT_LT(nine.errH, 1.25 * half.errH);
+  EXPECT_LT(nine.errCentre, 1.25 * half.errCentre + 1e-4);
+  EXPECT_LT(nine.steps, 0.65 * half.steps);
+  RecordProperty("thacker_split_cfl09_l1_h_100", std::to_string(nine.errH));
+  RecordProperty("thacker_split_cfl09_steps_100", std::to_string(nine.steps));
 }
