@@ -188,6 +188,7 @@ TALUS_LABEL = {"float": "Talus float, slope corr. on (default)", "double": "Talu
                "float_sc0": "Talus float, slope corr. off", "double_sc0": "Talus double, slope corr. off",
                "float_sc0_split": "Talus float, slope corr. off, split sweeps (CFL 0.5)",
                "float_sc0_split_cfl09": "Talus float, slope corr. off, split sweeps, CFL 0.9 (draining)",
+               "float_split_cfl09": "Talus float, split sweeps, CFL 0.9 (draining)",
                "geoclaw": "GeoClaw (dry tol. 1e-6 m, as Talus)",
                "geoclaw_dry1e-3": "GeoClaw (dry tol. 1e-3 m, its default)"}
 

@@ -35,6 +35,7 @@ TALUS_CONFIGS = {
     # 1/2 positive by the draining time, kernels/flow/stage.cl); GeoClaw's desired Courant number is 0.9
     "float_sc0_split":       ["Precision=float", "Slope Correction=0", "Time Scheme=split"],
     "float_sc0_split_cfl09": ["Precision=float", "Slope Correction=0", "Time Scheme=split", "CFL=0.9"],
+    "float_split_cfl09":     ["Precision=float", "Time Scheme=split", "CFL=0.9"],
 }
 GRID_TALUS_CONFIG = os.environ.get("PEERS_GRID_TALUS_CONFIG", "float_sc0")
 
@@ -256,7 +257,8 @@ def cmd_ritter(args):
         runfile = os.path.join(work, "ritter", name, "talus.run")
         print(f"ritter {name}", flush=True)
         run_rounds(work, [talus_job(work, "ritter_" + name, "float", 1, runfile),
-                          talus_job(work, "ritter_" + name, "double", 1, runfile)],
+                          talus_job(work, "ritter_" + name, "double", 1, runfile),
+                          talus_job(work, "ritter_" + name, "float_split_cfl09", 1, runfile)],
                    [geoclaw_job(work, "ritter_" + name, 1), geoclaw_job(work, "ritter_" + name, 1, dry1e3=True)],
                    args.reps)
 
