@@ -407,9 +407,9 @@ TEST_F(FlowKernels, TileSkippingIsBitwiseIdentical) {
 }
 
 TEST_F(FlowKernels, SplitSweepsMatchCpuReferenceAndStayPositiveUpToCourantOne) {
-  // The dimensionally split scheme, sweep by sweep, against the reference: at CFL 0.5 (positive by
-  // itself) and at CFL 0.8 and 1, where cells drain within a stage and the fluxes out of them are
-  // limited by their draining time (kernels/flow/stage.cl). Each step takes the full stable dt.
+  // The dimensionally split scheme, sweep by sweep, against the reference: at CFL 0.5 and at CFL
+  // 0.8 and 1, where cells drain within a stage and the fluxes out of them are limited by their
+  // draining time (kernels/flow/stage.cl). Each step takes the full stable dt.
   // runAndCompare also asserts exact conservation and that no thickness went negative (beyond
   // round-off) in the reference. The draining must have acted, or the test proves nothing about it.
   int scene = 0;
@@ -438,9 +438,10 @@ TEST_F(FlowKernels, SplitSweepsMatchCpuReferenceAndStayPositiveUpToCourantOne) {
       drained += probe.drainedCells();
       runAndCompare(sc, Precision::Double, 3, 1e-11, 1.0);
     }
+    // At 0.5 these scenes need no limiting (0 measured; a thin film elsewhere did,
+    // StressRegression.SplitSweepsDrainCellsFasterThanTheirCfl); above it they must.
     std::printf("CFL %.1f: %d cell-stages drained\n", cfl, drained);
     if (cfl > kPositiveCfl) EXPECT_GT(drained, 0) << "no cell drained: the limiter went untested";
-    else EXPECT_EQ(drained, 0) << "the draining limiter acted at a Courant number where the scheme is positive";
   }
 }
 

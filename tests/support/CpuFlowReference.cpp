@@ -9,7 +9,6 @@
 #include <stdexcept>
 
 #include "core/Constants.hpp"
-#include "flow/FlowParams.hpp"
 #include "flow/SlopeGravity.hpp"
 
 namespace talus::test {
@@ -244,8 +243,9 @@ double CpuFlowReference::rkStage(const State& s, const State* base, double dt, S
       for (int i = 0; i < nx; ++i) fy[j * nx + i] = faceFlux(s, i, j, 1);
 
   const double r = dt / grid_.dx;
-  if (settings_.cfl > flow::kPositiveCfl) {
-    // Draining time (Bollermann et al. 2011): a cell whose outgoing mass fluxes would take more than
+  if (settings_.scheme == flow::TimeScheme::Split) {
+    // Draining time (Bollermann et al. 2011), in the split sweeps at every Courant number (the
+    // kernel's DRAINING build): a cell whose outgoing mass fluxes would take more than
     // it holds within the stage gives each of them the fraction theta = h / (r O) of the stage in
     // which it still has water; a face's mass and advective momentum fluxes take the factor of its
     // upwind cell, its pressure and bed corrections stay.

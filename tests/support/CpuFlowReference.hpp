@@ -6,7 +6,7 @@
 //   U1 = U0 + dt L(U0)                      (then the dry-cell rule)
 //   U  = U0 / 2 + (U1 + dt L(U1)) / 2       (SSP-RK2, Shu & Osher 1988; then the dry-cell rule)
 //   (split scheme: the same per direction, L with that direction's faces only, x first on even
-//   steps; above CFL 1/2 each stage limits the fluxes out of draining cells, see rkStage)
+//   steps; each stage limits the fluxes out of draining cells, see rkStage)
 //   semi-implicit Manning friction, time += dt, running maxima / arrival, diagnostics.
 // L(U) is the finite-volume residual: MUSCL reconstruction of h, eta = h + b, u, v (limited slopes,
 // zero next to outside cells), hydrostatic reconstruction (Audusse et al. 2004), an HLL or HLLC
@@ -56,7 +56,7 @@ class CpuFlowReference {
   /// Volume [m^3] the dry-cell rule created in the last step by raising negative thicknesses to 0.
   /// Zero when the scheme stays positive; then volume(before) - volume(after) == outflow.
   double clampedVolume() const { return clampedVolume_; }
-  /// Cell-stages so far whose outgoing fluxes the draining time limited (CFL above 1/2 only).
+  /// Cell-stages so far whose outgoing fluxes the draining time limited (split scheme only).
   int drainedCells() const { return drainedCells_; }
 
   /// Numerical flux through one face, as the update consumes it (see kernels/flow/riemann.cl).
@@ -86,8 +86,8 @@ class CpuFlowReference {
   FaceFlux faceFlux(const State& s, int i, int j, int dir) const;
   /// out = base/2 + (s + dt L(s))/2 when base is given, else s + dt L(s); returns the outward
   /// mass flux summed over boundary faces [m^2/s].
-  /// dirs: 1 (x faces), 2 (y faces) or 3 (both). Above the Courant number 1/2 the fluxes out of
-  /// draining cells are limited as kernels/flow/stage.cl states (draining time).
+  /// dirs: 1 (x faces), 2 (y faces) or 3 (both). In the split scheme the fluxes out of draining
+  /// cells are limited as kernels/flow/stage.cl states (draining time).
   double rkStage(const State& s, const State* base, double dt, State& out, double& added, int dirs) const;
   void friction(double dt);
   void track();
