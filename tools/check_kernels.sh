@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Compiles every OpenCL kernel file (kernels/*/*.cl) with clang's OpenCL front end under each
 # variant of the compile-time switches the engine uses (precision, limiter, Riemann solver and the
-# optional physics: viscous, particle bed, curvature; each basal law; the split time scheme and its
-# draining-time limiter) and fails on any warning. A device compiler
+# optional physics: viscous, particle bed, curvature; each basal law; the split time scheme with
+# its draining-time limiter) and fails on any warning. A device compiler
 # that prints only "N warnings generated." (PoCL) then never hides one, and a warning that only a
 # rarely used variant shows is found here rather than by a user.
 # Needs clang (clang-14 in CI, installed by tools/setup.sh for the fuzz targets); skips with a
@@ -27,7 +27,7 @@ for file in "$root"/kernels/*/*.cl; do
       for optional in 0 1; do
         defines=(-DTALUS_DOUBLE=$precision -DLIMITER=$limiter -DRIEMANN=$(( limiter % 2 )) -DTILE=16
                  -DDEBRIS_VISCOUS=$optional -DDEBRIS_OBSTACLE=$optional -DDEBRIS_CURVATURE=$optional
-                 -DPARTICLE_CURVATURE=$optional -DPARTICLE_METRIC=$optional -DMANNING_ALONG_BED=$optional -DRHEOLOGY=$limiter -DSPLIT=$optional -DDRAINING=$optional)
+                 -DPARTICLE_CURVATURE=$optional -DPARTICLE_METRIC=$optional -DMANNING_ALONG_BED=$optional -DRHEOLOGY=$limiter -DSPLIT=$optional)
         count=$(( count + 1 ))
         if ! out=$("$clang" -x cl -cl-std=CL1.2 -fsyntax-only -Xclang -finclude-default-header -Werror \
                    "${defines[@]}" -I"$root/kernels" "$file" 2>&1); then

@@ -30,7 +30,7 @@
 // over both directions leaves margin, the split sweeps have none (a soak found a film on a 14 x 2
 // grid that gained 75 % of its volume in one split step at Courant number 1/2).
 //
-// DRAINING (build option; on for the split sweeps, which then take Courant numbers up to 1):
+// DRAINING (= SPLIT: on for the split sweeps, which then take Courant numbers up to 1):
 // positivity by the draining time of Bollermann, Noelle & Lukacova-Medvidova (2011, Commun. Comput.
 // Phys. 10, eq. 3.5; Bollermann et al. 2013, SIAM J. Sci. Comput. 35, sec. 3.3). A cell whose
 // outgoing mass fluxes O (per unit width, over its two faces of the sweep) would take more than it
@@ -45,9 +45,8 @@
 // along the sweep, hence one more halo cell.
 #include "flow/riemann.cl"
 
-#ifndef DRAINING
-#define DRAINING 0
-#endif
+// The split sweeps (-DSPLIT=1) always limit draining cells; the unsplit stage never does.
+#define DRAINING SPLIT
 #if DRAINING
 #define HALO 3
 #define RING 1        // cells beyond the tile, along the sweep, whose draining factor is needed

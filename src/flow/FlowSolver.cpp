@@ -21,9 +21,8 @@ std::string buildOptions(const FlowSettings& s) {
          " -DRIEMANN=" + std::to_string(static_cast<int>(s.riemann)) + " -DTILE=" + std::to_string(kTile) +
          // Manning's friction acts along the bed where the slope correction is on (flow/manning.cl).
          " -DMANNING_ALONG_BED=" + (s.slopeCorrection ? "1" : "0") +
-         " -DSPLIT=" + (s.scheme == TimeScheme::Split ? "1" : "0") +
-         // The split sweeps stay positive by the draining time, up to Courant number 1 (stage.cl).
-         " -DDRAINING=" + (s.scheme == TimeScheme::Split ? "1" : "0");
+         // SPLIT: the split sweeps, which stay positive by the draining time up to CFL 1 (stage.cl).
+         " -DSPLIT=" + (s.scheme == TimeScheme::Split ? "1" : "0");
 }
 
 template <class Real>
@@ -80,7 +79,7 @@ FlowSolver::FlowSolver(compute::Context& ctx, const Grid& grid, const FlowSettin
       reducer_(ctx) {
   if (grid.nx < 1 || grid.ny < 1 || !(grid.dx > 0)) throw InputError("flow solver needs a grid of at least 1x1 cells");
   if (!(settings.cfl > 0 && settings.cfl <= 1.0)) throw InputError("CFL must lie in (0, 1]");
-  if (settings.cfl > kPositiveCfl && (settings.twoPhase || settings.scheme != TimeScheme::Split))
+  if (settings.cfl > kPositiveCfl && settings.scheme != TimeScheme::Split)
     throw InputError("a CFL above 0.5 needs Time Scheme=split (water only): the unsplit stage is positive only up "
                      "to 0.5");
   if (settings.particleBed && !settings.twoPhase) throw InputError("the particle bed needs the two-phase grid model");

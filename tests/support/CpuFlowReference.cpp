@@ -245,7 +245,7 @@ double CpuFlowReference::rkStage(const State& s, const State* base, double dt, S
   const double r = dt / grid_.dx;
   if (settings_.scheme == flow::TimeScheme::Split) {
     // Draining time (Bollermann et al. 2011), in the split sweeps at every Courant number (the
-    // kernel's DRAINING build): a cell whose outgoing mass fluxes would take more than
+    // kernel's split build, DRAINING = SPLIT): a cell whose outgoing mass fluxes would take more than
     // it holds within the stage gives each of them the fraction theta = h / (r O) of the stage in
     // which it still has water; a face's mass and advective momentum fluxes take the factor of its
     // upwind cell, its pressure and bed corrections stay.
