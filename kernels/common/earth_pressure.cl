@@ -8,7 +8,7 @@
 /// Savage & Hutter (1989) earth-pressure coefficient: K = 2/cos^2(phi) (1 -+ sqrt(1 - cos^2(phi) /
 /// cos^2(delta))) - 1, active (-, the flow extends) or passive (+, it contracts); the root's argument
 /// is clipped at zero when delta > phi. `passive` in [0, 1] blends linearly from K_act (0) to K_pass (1).
-inline real earth_pressure(real phi, real delta, real passive) {
+INLINE real earth_pressure(real phi, real delta, real passive) {
   const real cp = cos(phi), cd = cos(delta);
   const real root = sqrt(fmax((real)0, (real)1 - cp * cp / (cd * cd)));
   return (real)2 / (cp * cp) * ((real)1 + ((real)2 * passive - (real)1) * root) - (real)1;
@@ -22,7 +22,7 @@ inline real earth_pressure(real phi, real delta, real passive) {
 /// switch, a = 1 at 80 cells per column length still moved at 2.8 s; with this ramp it is at rest at
 /// 0.37 s, and the runouts of the series are unchanged to the cell. A ramp 10 times steeper (0.01)
 /// still sloshed).
-inline real passive_share_of_rate(real rate, real gn, real H) {
+INLINE real passive_share_of_rate(real rate, real gn, real H) {
   if (!(rate > (real)0)) return (real)0;
   return fmin(rate / ((real)0.1 * sqrt(gn / fmax(H, (real)1e-6))), (real)1);
 }

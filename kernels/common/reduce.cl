@@ -6,12 +6,12 @@
 #define REDUCE_MIN 1
 #define REDUCE_MAX 2
 
-inline real reduce_identity(int op) {
+INLINE real reduce_identity(int op) {
   return op == REDUCE_SUM ? (real)0 : (op == REDUCE_MIN ? REAL_MAX : -REAL_MAX);
 }
 
 // NaN propagates through every operation, so a NaN anywhere is visible in the result.
-inline real reduce_combine(int op, real a, real b) {
+INLINE real reduce_combine(int op, real a, real b) {
   if (isnan(a) || isnan(b)) return a + b;
   return op == REDUCE_SUM ? a + b : (op == REDUCE_MIN ? min(a, b) : max(a, b));
 }

@@ -38,7 +38,7 @@ typedef struct {
 
 /// Coulomb: tau = tan(delta) sigma_n (Savage & Hutter 1989; OpenLISEM P.39). Returns the factor
 /// q / q* in [0, 1].
-inline real coulomb_factor(BasalColumn c, real qs, real ds) {
+INLINE real coulomb_factor(BasalColumn c, real qs, real ds) {
   const real fric = ds * c.tan_delta * c.n_g * c.h_st;
   return qs <= fric ? (real)0 : (real)1 - fric / qs;
 }
@@ -48,7 +48,7 @@ inline real coulomb_factor(BasalColumn c, real qs, real ds) {
 /// with c = (g / xi) s / (h^2 cos(theta)); with r = q* - ds mu n_g h_st the implicit step
 /// q + ds c q^2 = r has the root q = 2 r / (1 + sqrt(1 + 4 ds c r)) (no cancellation). The steady
 /// uniform state on a plane is |U|^2 = xi H (sin(theta) - mu cos(theta)). rheo = {mu, g / xi} (g / xi dimensionless).
-inline real voellmy_factor(__constant const DebrisParams* dp, BasalColumn c, real qs, real ds) {
+INLINE real voellmy_factor(__constant const DebrisParams* dp, BasalColumn c, real qs, real ds) {
   const real r = qs - ds * dp->rheo[0] * c.n_g * c.h_st;
   if (r <= (real)0) return (real)0;
   const real cq = ds * dp->rheo[1] * c.stretch / (c.h * c.h * c.cos_t);
@@ -64,7 +64,7 @@ inline real voellmy_factor(__constant const DebrisParams* dp, BasalColumn c, rea
 /// q + K (tan z1 + D f q / (f q + A)) = q* is the quadratic f q^2 + (A - R f + K D f) q - R A = 0.
 /// rheo = {tan z1, tan z2, beta, L}. The steady uniform states: tan(theta) = mu, i.e. h_stop(theta) =
 /// L (tan z2 - tan theta) / (tan theta - tan z1) and Fr = beta H / h_stop(theta) above it.
-inline real mu_i_factor(__constant const DebrisParams* dp, BasalColumn c, real qs, real ds) {
+INLINE real mu_i_factor(__constant const DebrisParams* dp, BasalColumn c, real qs, real ds) {
   const real t1 = dp->rheo[0], dt12 = dp->rheo[1] - dp->rheo[0], beta = dp->rheo[2], L = dp->rheo[3];
   const real K = ds * c.n_g * c.h_st;
   const real H = c.h * c.cos_t;
@@ -88,7 +88,7 @@ inline real mu_i_factor(__constant const DebrisParams* dp, BasalColumn c, real q
 /// 1998, eq. 9 for n = 1) to U = n/(n+1) (tau/K)^(1/n) H (1-r)^(1+1/n) (1 - n/(2n+1) (1-r)), r =
 /// tau_y / tau; for n = 1, 2 tau^3 - (3 tau_y + 6 mu_B U / H) tau^2 + tau_y^3 = 0. Also returns
 /// dU/dtau in *dU.
-inline real hb_speed(real tau, real ty, real K, real n, real H, real* dU) {
+INLINE real hb_speed(real tau, real ty, real K, real n, real H, real* dU) {
   const real r = ty / tau, w = (real)1 - r;
   if (!(w > (real)0)) {
     *dU = (real)0;
@@ -106,7 +106,7 @@ inline real hb_speed(real tau, real ty, real K, real n, real H, real* dU) {
 /// from F(tau_y) < 0 to F(q*/m) >= 0: Newton's method kept inside that bracket (bisection where a
 /// step leaves it). Held while q* <= m tau_y. rheo = {tau_y, K, n}. The steady uniform state on a
 /// plane is tau = rho g H sin(theta), U = U(tau); a layer with rho g H sin(theta) <= tau_y rests.
-inline real herschel_bulkley_factor(__constant const DebrisParams* dp, BasalColumn c, real qs, real ds) {
+INLINE real herschel_bulkley_factor(__constant const DebrisParams* dp, BasalColumn c, real qs, real ds) {
   const real ty = dp->rheo[0], K = dp->rheo[1], n = dp->rheo[2];
   const real m = ds / (c.rho * c.cos_t * c.stretch);
   if (qs <= m * ty) return (real)0;
@@ -136,7 +136,7 @@ inline real herschel_bulkley_factor(__constant const DebrisParams* dp, BasalColu
 #endif
 
 /// The factor q / q* of the cell's law (q* > 0).
-inline real basal_factor(__constant const DebrisParams* dp, BasalColumn c, real qs, real ds) {
+INLINE real basal_factor(__constant const DebrisParams* dp, BasalColumn c, real qs, real ds) {
   switch (BASAL_LAW(dp)) {
     case RHEOLOGY_VOELLMY: return voellmy_factor(dp, c, qs, ds);
     case RHEOLOGY_MU_I: return mu_i_factor(dp, c, qs, ds);
@@ -149,7 +149,7 @@ inline real basal_factor(__constant const DebrisParams* dp, BasalColumn c, real 
 /// the largest q* / ds that the cell's law still holds (basal_factor returns 0), i.e. each law's
 /// yield threshold at zero speed: Coulomb tan(delta) n_g h, Voellmy mu n_g h, mu(I) mu_stop(H) n_g h
 /// (the Fr < beta branch), Herschel-Bulkley tau_y / (rho cos(theta) s).
-inline real basal_strength(__constant const DebrisParams* dp, BasalColumn c) {
+INLINE real basal_strength(__constant const DebrisParams* dp, BasalColumn c) {
   switch (BASAL_LAW(dp)) {
     case RHEOLOGY_VOELLMY: return dp->rheo[0] * c.n_g * c.h_st;
     case RHEOLOGY_MU_I: {
@@ -163,7 +163,7 @@ inline real basal_strength(__constant const DebrisParams* dp, BasalColumn c) {
 
 /// s = sqrt(1 + (e.grad b)^2) of motion along (rx, ry) over the bed gradient (bx, by); 1 with the
 /// horizontal form of the slope terms (MANNING_ALONG_BED=0, slope correction off).
-inline real along_bed_stretch(real rx, real ry, real bx, real by) {
+INLINE real along_bed_stretch(real rx, real ry, real bx, real by) {
 #if MANNING_ALONG_BED
   const real qn = sqrt(rx * rx + ry * ry);
   if (!(qn > (real)0)) return (real)1;

@@ -6,7 +6,7 @@
 
 #define BASAL_TEST_IN 10
 
-inline BasalColumn test_column(__global const real* v) {
+INLINE BasalColumn test_column(__global const real* v) {
   BasalColumn c;
   c.h_st = v[0];
   c.h = v[1];

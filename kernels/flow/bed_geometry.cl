@@ -14,13 +14,13 @@
 #define DEPTH_COS4 0
 #endif
 
-inline real minmod_slope(real a, real b) {
+INLINE real minmod_slope(real a, real b) {
   if (a * b <= (real)0) return (real)0;
   return fabs(a) < fabs(b) ? a : b;
 }
 
 /// Limited slope of `f` at (i, j) along (di, dj), per unit length (SlopeGravity.cpp, limitedBedSlope).
-inline real bed_limited_slope(__constant const FlowParams* p, __global const uchar* mask, __global const real* f, int i,
+INLINE real bed_limited_slope(__constant const FlowParams* p, __global const uchar* mask, __global const real* f, int i,
                           int j, int di, int dj) {
   const int m = cell_inside(p, mask, i - di, j - dj), q = cell_inside(p, mask, i + di, j + dj);
   const real c = f[cell_index(p, i, j)];

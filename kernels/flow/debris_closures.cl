@@ -43,7 +43,7 @@ typedef struct {
 
 /// Value of the solids' passive scalar `c` (0 phi, 1 rho_s, 2 d, 3 cohesion) where there are none
 /// (debris_stage.cl, entrainment.cl).
-inline real scalar_default(__constant const DebrisParams* dp, int c) {
+INLINE real scalar_default(__constant const DebrisParams* dp, int c) {
   return c == 0 ? dp->phi_default : c == 1 ? dp->rho_s_default : c == 2 ? dp->d_default : (real)0;
 }
 
@@ -55,7 +55,7 @@ inline real scalar_default(__constant const DebrisParams* dp, int c) {
 /// pores are full. It scales the basal normal stress (1 - B gamma_eff), the lateral pressure
 /// (1 - gamma_eff) and the buoyancy force gamma_eff g_p h_s grad(H) (debris_stage.cl): a partly
 /// saturated layer interpolates linearly in chi between dry and saturated.
-inline real submerged_gamma(__constant const DebrisParams* dp, real rho_s, real hs, real hf) {
+INLINE real submerged_gamma(__constant const DebrisParams* dp, real rho_s, real hs, real hf) {
   if (!(hf > (real)0)) return (real)0;
   const real gamma = dp->rho_f / rho_s;
   const real pores = hs * ((real)1 - dp->packing);
@@ -67,7 +67,7 @@ inline real submerged_gamma(__constant const DebrisParams* dp, real rho_s, real 
 /// film_h)): u = sqrt(2) h q / sqrt(h^4 + max(h^4, eps^4)). In a solid film of a fraction of a
 /// millimetre q/h is ill-conditioned and would drive spurious speeds (and tiny time steps) at thin
 /// fronts. Above eps it is exactly q/h. The stage rewrites q = h u.
-inline real solid_velocity(real h, real q, real h_dry, real film_h) {
+INLINE real solid_velocity(real h, real q, real h_dry, real film_h) {
   if (h <= h_dry) return (real)0;
   const real eps = fmax(h_dry, film_h);
   if (h >= eps) return q / h;
@@ -77,17 +77,17 @@ inline real solid_velocity(real h, real q, real h_dry, real film_h) {
 
 /// Passive share of the Savage-Hutter K (common/earth_pressure.cl) of a cell whose solids' velocity
 /// changes by du across it (face hi minus face lo, along the direction): the strain rate -du/dx.
-inline real passive_share(real du, real dx, real gn, real H) { return passive_share_of_rate(-du / dx, gn, H); }
+INLINE real passive_share(real du, real dx, real gn, real H) { return passive_share_of_rate(-du / dx, gn, H); }
 
 /// O'Brien & Julien (1985) dynamic viscosity of the fluid phase carrying solids (OpenLISEM P.72).
-inline real obrien_julien(__constant const DebrisParams* dp, real alpha_s) {
+INLINE real obrien_julien(__constant const DebrisParams* dp, real alpha_s) {
   return dp->visc_a * exp(dp->visc_b * alpha_s);
 }
 
 /// Settling velocity of a grain of size d (OpenLISEM Hazard P.73): Stokes below 100 um, Zanke
 /// (1977) above 1 mm, U = 10 nu/d (sqrt(1 + 0.01 (rho_s - rho_f)/rho_f g d^3 / nu^2) - 1), and a
 /// linear blend in between.
-inline real settling_velocity(real d, real rho_s, real rho_f, real eta) {
+INLINE real settling_velocity(real d, real rho_s, real rho_f, real eta) {
   const real dd = fmax(d, (real)1e-7);
   const real nu = eta / rho_f;
   const real rel = fmax(rho_s - rho_f, (real)0) / rho_f;
@@ -104,7 +104,7 @@ inline real settling_velocity(real d, real rho_s, real rho_f, real eta) {
 /// C = alpha_s alpha_f (1 - gamma) g / [U_T (P F + (1 - P) G) + S_p]^j,
 /// F = gamma/180 (alpha_f/alpha_s)^3 Re_p, G = alpha_f^(M-1), P = alpha_s^m, Re_p = rho_f d U_T / eta,
 /// S_p = (P/alpha_s + (1 - P)/alpha_f) K.
-inline real drag_coefficient(__constant const DebrisParams* dp, real alpha_s, real rho_s, real d) {
+INLINE real drag_coefficient(__constant const DebrisParams* dp, real alpha_s, real rho_s, real d) {
   const real as = clamp(alpha_s, (real)1e-6, (real)1 - (real)1e-6), af = (real)1 - as;
   const real gamma = dp->rho_f / rho_s;
   const real eta = obrien_julien(dp, as);

@@ -68,7 +68,7 @@
 
 /// Share of the bed step between cells k (higher) and o that the particles make: the part of the
 /// fluid-bed difference B_k - B_o due to H_c, in [0, 1]; 0 unless cell k holds particles.
-inline real particle_share(real dHc, real dB, real Hc_k) {
+INLINE real particle_share(real dHc, real dB, real Hc_k) {
   if (!(Hc_k > (real)0) || !(dB > (real)0)) return (real)0;
   return clamp(dHc / dB, (real)0, (real)1);
 }
@@ -87,7 +87,7 @@ typedef struct {
   Prim2 lo, hi;
 } Faces2;
 
-inline Prim2 load_prim2(__constant const FlowParams* p, __constant const DebrisParams* dp, __global const real* S,
+INLINE Prim2 load_prim2(__constant const FlowParams* p, __constant const DebrisParams* dp, __global const real* S,
                         __global const real* hf, __global const real* qfx, __global const real* qfy,
                         __global const real* b, __global const real* pbed, int k, int n, int dir) {
   Prim2 c;
@@ -114,7 +114,7 @@ inline Prim2 load_prim2(__constant const FlowParams* p, __constant const DebrisP
 /// first order on and next to the particle bed: its bed is then flat within each cell, so every bed
 /// force on the fluid there is a face correction that the particles take in full (no bed slope
 /// inside a cell without particles, which nothing could take the reaction of).
-inline Faces2 reconstruct2(Prim2 m, int m_in, Prim2 c, Prim2 p, int p_in) {
+INLINE Faces2 reconstruct2(Prim2 m, int m_in, Prim2 c, Prim2 p, int p_in) {
   const Prim s0 = {c.hs, c.es, c.us, c.vs}, sm = {m.hs, m.es, m.us, m.vs}, sp = {p.hs, p.es, p.us, p.vs};
   const Prim f0 = {c.hf, c.ef, c.uf, c.vf}, fm = {m.hf, m.ef, m.uf, m.vf}, fp = {p.hf, p.ef, p.uf, p.vf};
   const int on_bed = c.hc > (real)0 || (m_in && m.hc > (real)0) || (p_in && p.hc > (real)0);
@@ -135,12 +135,12 @@ typedef struct {
   real gamma, phi, delta, rho_s, d, c_over_rho;
 } Material;
 
-inline real scalar_of(__global const real* S, int n, int comp, int k, real h_dry, real fallback) {
+INLINE real scalar_of(__global const real* S, int n, int comp, int k, real h_dry, real fallback) {
   const real hs = S[k];
   return hs > h_dry ? S[comp * n + k] / hs : fallback;
 }
 
-inline Material material_of(__constant const FlowParams* p, __constant const DebrisParams* dp, __global const real* S,
+INLINE Material material_of(__constant const FlowParams* p, __constant const DebrisParams* dp, __global const real* S,
                             __global const real* hf, __global const real* delta, int k, int n) {
   Material m;
   m.phi = scalar_of(S, n, 3, k, p->h_dry, dp->phi_default);
@@ -154,7 +154,7 @@ inline Material material_of(__constant const FlowParams* p, __constant const Deb
 
 /// A solid side of solid_bed.cl with the lateral pressure Pi [m^2/s^2] (per unit solid density and
 /// thickness) of coefficient K: Pi = max(0, a H - c0), a = K (1 - gamma) g_p / 2, c0 = 2 c sqrt(K) / rho_s.
-inline SolidSide solid_side(real h, real z, real un, real ut, real hf, real K, Material m, real g, real geff) {
+INLINE SolidSide solid_side(real h, real z, real un, real ut, real hf, real K, Material m, real g, real geff) {
   const SolidSide s = {h, z, un, ut, (real)0.5 * K * ((real)1 - m.gamma) * g, (real)2 * m.c_over_rho * sqrt(K), hf, geff, 0};
   return s;
 }
@@ -162,7 +162,7 @@ inline SolidSide solid_side(real h, real z, real un, real ut, real hf, real K, M
 /// The push a static column (thickness hs, material m, g_n of its cell) holds through one face beyond
 /// its own pressure (solid_bed.cl, point 6): half its basal strength at rest over the cell's area, per
 /// unit width [m^3/s^2].
-inline real static_hold(__constant const FlowParams* p, __constant const DebrisParams* dp, real hs, Material m, real gn) {
+INLINE real static_hold(__constant const FlowParams* p, __constant const DebrisParams* dp, real hs, Material m, real gn) {
   if (!(hs > p->h_dry)) return (real)0;
   BasalColumn c;
   c.h_st = hs;
@@ -182,7 +182,7 @@ inline real static_hold(__constant const FlowParams* p, __constant const DebrisP
 /// and, in `lift`, u_o . (grad b_k - grad b_o), the change of vertical velocity that staying on the
 /// bed asks (its sign: the bed presses, > 0, or holds the material down, < 0). Grouped so that x <-> y
 /// transposed cells give bitwise the same values.
-inline real2 arrival_turn(__constant const FlowParams* p, __constant const DebrisParams* dp, __global const real* S,
+INLINE real2 arrival_turn(__constant const FlowParams* p, __constant const DebrisParams* dp, __global const real* S,
                           __global const real* fslope, __global const real* gn, int n, int k, int o, real* lift) {
   const real u = solid_velocity(S[o], S[n + o], p->h_dry, dp->film_h), v = solid_velocity(S[o], S[2 * n + o], p->h_dry, dp->film_h);
   const real sxk = fslope[k], syk = fslope[n + k], sxo = fslope[o], syo = fslope[n + o];
@@ -203,7 +203,7 @@ inline real2 arrival_turn(__constant const FlowParams* p, __constant const Debri
 /// (rho_s (|q_s|^2 + (q_s . grad b)^2) / h_s + rho_f (...) / h_f) / 2 [J/m^2], the horizontal and the
 /// vertical motion as the diagnostics count them (debris_diagnostics.cl), each phase where it is
 /// thicker than h_dry.
-inline real column_kinetic(__constant const DebrisParams* dp, real hs, const real* qs, real rho_s, real hf, const real* qf,
+INLINE real column_kinetic(__constant const DebrisParams* dp, real hs, const real* qs, real rho_s, real hf, const real* qf,
                            real sx, real sy, real h_dry) {
   real e = 0;
   if (hs > h_dry) {

@@ -25,7 +25,7 @@
 #define VISC_MIN_ALPHA_F ((real)0.1)
 
 /// nu = sqrt(g H) H / (alpha_f N) for 1/N = inv_n [m^2/s].
-inline real visc_nu(real g, real H, real alpha_f, real inv_n) {
+INLINE real visc_nu(real g, real H, real alpha_f, real inv_n) {
   return sqrt(g * H) * H * inv_n / fmax(alpha_f, VISC_MIN_ALPHA_F);
 }
 
@@ -36,7 +36,7 @@ typedef struct {
   real uf, vf, us, vs;
 } ViscCell;
 
-inline ViscCell visc_cell(__constant const FlowParams* p, __constant const DebrisParams* dp,
+INLINE ViscCell visc_cell(__constant const FlowParams* p, __constant const DebrisParams* dp,
                           __global const uchar* mask, __global const real* S, __global const real* hf,
                           __global const real* qfx, __global const real* qfy, int i, int j) {
   ViscCell c = {0, 0, 0, 0, 0, 0, 0, 0};
@@ -56,7 +56,7 @@ inline ViscCell visc_cell(__constant const FlowParams* p, __constant const Debri
 
 /// Centred difference (m, p both wet), one-sided (one of them), or 0, of the values qm, q0, qp at
 /// spacing dx.
-inline real visc_diff(int m_wet, real qm, real q0, int p_wet, real qp, real dx) {
+INLINE real visc_diff(int m_wet, real qm, real q0, int p_wet, real qp, real dx) {
   if (m_wet && p_wet) return (qp - qm) / ((real)2 * dx);
   if (p_wet) return (qp - q0) / dx;
   if (m_wet) return (q0 - qm) / dx;
@@ -65,7 +65,7 @@ inline real visc_diff(int m_wet, real qm, real q0, int p_wet, real qp, real dx) 
 
 /// Derivatives along the face tangent, at cell (i, j), of the fluid's normal velocity u_n (.x) and
 /// of the solid fraction (.y), from the cell's two tangential neighbours.
-inline real2 visc_tangential(__constant const FlowParams* p, __constant const DebrisParams* dp,
+INLINE real2 visc_tangential(__constant const FlowParams* p, __constant const DebrisParams* dp,
                              __global const uchar* mask, __global const real* S, __global const real* hf,
                              __global const real* qfx, __global const real* qfy, int i, int j, int dir,
                              ViscCell c0) {
@@ -78,7 +78,7 @@ inline real2 visc_tangential(__constant const FlowParams* p, __constant const De
 }
 
 /// Face coefficient h_f nu [m^3/s] between two wet cells for 1/N = inv_n (0: 0).
-inline real visc_mu(real g, ViscCell L, ViscCell R, real inv_n) {
+INLINE real visc_mu(real g, ViscCell L, ViscCell R, real inv_n) {
   if (inv_n <= (real)0) return (real)0;
   const real H = (real)0.5 * (L.H + R.H);
   const real af = (real)0.5 * (((real)1 - L.as) + ((real)1 - R.as));
@@ -89,7 +89,7 @@ inline real visc_mu(real g, ViscCell L, ViscCell R, real inv_n) {
 /// Viscous momentum fluxes (normal, tangential component) of the fluid through the face between
 /// cell (i, j) and its neighbour (i + 1, j) (dir 0) or (i, j + 1) (dir 1), in the sign convention of
 /// the convective fluxes (dq = -dt/dx (F_p - F_m)). Evaluated identically by both cells.
-inline real2 visc_face(__constant const FlowParams* p, __constant const DebrisParams* dp, __global const uchar* mask,
+INLINE real2 visc_face(__constant const FlowParams* p, __constant const DebrisParams* dp, __global const uchar* mask,
                        __global const real* S, __global const real* hf, __global const real* qfx,
                        __global const real* qfy, __global const real* gp, int i, int j, int dir) {
   const int di = dir == 0, dj = dir == 1;
@@ -130,7 +130,7 @@ inline real2 visc_face(__constant const FlowParams* p, __constant const DebrisPa
 /// (32 max mu_f), a factor 2 inside that for any mix of faces. The interfacial part is bounded the
 /// same way (|grad alpha_s| <= 1/dx, so its dependence on u_f is no stiffer than a diffusion with
 /// its mu).
-inline real visc_speed(__constant const FlowParams* p, __constant const DebrisParams* dp, __global const uchar* mask,
+INLINE real visc_speed(__constant const FlowParams* p, __constant const DebrisParams* dp, __global const uchar* mask,
                        __global const real* S, __global const real* hf, __global const real* qfx,
                        __global const real* qfy, int i, int j) {
   const ViscCell c = visc_cell(p, dp, mask, S, hf, qfx, qfy, i, j);
@@ -146,7 +146,7 @@ inline real visc_speed(__constant const FlowParams* p, __constant const DebrisPa
 
 /// Implicit basal shear terms over ds on the fluid discharge qf (see the header): chi damps u_f,
 /// xi damps w = u_f - u_s (the solid velocity (usx, usy) is not changed).
-inline void visc_basal(__constant const DebrisParams* dp, real g, real hs, real hf, real usx, real usy, real* qf,
+INLINE void visc_basal(__constant const DebrisParams* dp, real g, real hs, real hf, real usx, real usy, real* qf,
                        real ds) {
   const real H = hs + hf, af = hf / H, as = hs / H, H2 = H * H;
   if (dp->chi > (real)0 && dp->inv_nr > (real)0) {

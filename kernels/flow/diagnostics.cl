@@ -34,7 +34,7 @@
 /// Reduces `rows` values per work-item (row r in s[r * TILE_CELLS + lid]; the speed rows by max with
 /// NaN propagation, DIAG_MIN_H by min, the others by sum) and the wet flags, then work-item 0 writes
 /// the tile's partials at its slot in the active list and its wet flag.
-inline void reduce_tile(__local real* s, __local int* s_wet, int rows, int lid, int slot, int ntiles,
+INLINE void reduce_tile(__local real* s, __local int* s_wet, int rows, int lid, int slot, int ntiles,
                         __global real* partial, __global int* tile_wet, int tile) {
   barrier(CLK_LOCAL_MEM_FENCE);
   for (int step = TILE_CELLS / 2; step > 0; step >>= 1) {
@@ -114,7 +114,7 @@ void flow_tile_diagnostics(__constant const FlowParams* p, __global const uchar*
 
 #define COMPACT_GROUP 256
 
-inline int tile_should_run(__constant const FlowParams* p, __global const int* tile_wet, int t) {
+INLINE int tile_should_run(__constant const FlowParams* p, __global const int* tile_wet, int t) {
   if (!p->skip_dry_tiles) return 1;
   const int ti = t % p->tiles_x, tj = t / p->tiles_x;
   for (int dj = -1; dj <= 1; ++dj)

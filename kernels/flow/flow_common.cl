@@ -39,23 +39,23 @@ typedef struct {
   real pad1;
 } FlowParams;
 
-inline int cell_index(__constant const FlowParams* p, int i, int j) { return j * p->nx + i; }
+INLINE int cell_index(__constant const FlowParams* p, int i, int j) { return j * p->nx + i; }
 
 /// 1 inside the domain (on the raster and not nodata), 0 outside.
-inline int cell_inside(__constant const FlowParams* p, __global const uchar* mask, int i, int j) {
+INLINE int cell_inside(__constant const FlowParams* p, __global const uchar* mask, int i, int j) {
   if (i < 0 || j < 0 || i >= p->nx || j >= p->ny) return 0;
   return mask[j * p->nx + i] != 0;
 }
 
 /// Boundary type of the face from inside cell (i,j) to the outside cell (io,jo).
-inline int boundary_kind(__constant const FlowParams* p, int io, int jo) {
+INLINE int boundary_kind(__constant const FlowParams* p, int io, int jo) {
   const int off_raster = io < 0 || jo < 0 || io >= p->nx || jo >= p->ny;
   return off_raster ? p->edge_boundary : p->nodata_boundary;
 }
 
 /// The cell of this work-item: work-group g handles the tile tile_list[g] (active tiles only, in
 /// ascending order), one work-item per cell. Work-items past the raster edge get i >= nx or j >= ny.
-inline int2 tile_cell(__constant const FlowParams* p, __global const int* tile_list) {
+INLINE int2 tile_cell(__constant const FlowParams* p, __global const int* tile_list) {
   const int tile = tile_list[get_group_id(0)];
   const int tx = tile % p->tiles_x, ty = tile / p->tiles_x;
   return (int2)(tx * TILE + (int)get_local_id(0), ty * TILE + (int)get_local_id(1));
@@ -65,10 +65,10 @@ inline int2 tile_cell(__constant const FlowParams* p, __global const int* tile_l
 /// u = sqrt(2) h q / sqrt(h^4 + max(h^4, eps^4)); with eps = h_dry that formula is exactly q / h
 /// above the dry threshold, and below it the velocity is set to zero (the momentum of films thinner
 /// than h_dry is discarded by the update), so the division never sees a tiny h.
-inline real velocity(real h, real q, real h_dry) { return h > h_dry ? q / h : (real)0; }
+INLINE real velocity(real h, real q, real h_dry) { return h > h_dry ? q / h : (real)0; }
 
 /// Limited slope from the backward difference a and forward difference b.
-inline real limited_slope(real a, real b) {
+INLINE real limited_slope(real a, real b) {
 #if LIMITER == 0
   // minmod
   return (a * b <= (real)0) ? (real)0 : (fabs(a) < fabs(b) ? a : b);
@@ -90,7 +90,7 @@ inline real limited_slope(real a, real b) {
 /// Minmod of the one-sided differences a (backward) and b (forward): the bed's slope in a cell. On a
 /// bed that falls (or rises) monotonically the reconstructed face beds then never jump against the
 /// fall at a face, whatever the curvature, and a plane is exact.
-inline real bed_minmod(real a, real b) {
+INLINE real bed_minmod(real a, real b) {
   if (a * b <= (real)0) return (real)0;
   return fabs(a) < fabs(b) ? a : b;
 }
@@ -108,7 +108,7 @@ typedef struct {
   real h, e, un, ut;
 } Prim;
 
-inline Prim load_prim(__constant const FlowParams* p, __global const real* h, __global const real* qx,
+INLINE Prim load_prim(__constant const FlowParams* p, __global const real* h, __global const real* qx,
                       __global const real* qy, __global const real* b, int k, int dir) {
   Prim s;
   s.h = h[k];
@@ -121,7 +121,7 @@ inline Prim load_prim(__constant const FlowParams* p, __global const real* h, __
 }
 
 /// Face values of cell c from its slopes of thickness, surface and the two velocities.
-inline CellFaces faces_of(Prim c, real sh, real se, real su, real sv) {
+INLINE CellFaces faces_of(Prim c, real sh, real se, real su, real sv) {
   CellFaces f;
   f.h_lo = c.h - (real)0.5 * sh;
   f.h_hi = c.h + (real)0.5 * sh;
@@ -138,7 +138,7 @@ inline CellFaces faces_of(Prim c, real sh, real se, real su, real sv) {
 /// direction. A neighbour outside the domain gives a zero slope (first order next to boundaries),
 /// which is also what the limiter returns for a mirrored ghost cell's thickness and surface; so does
 /// a dry cell or a dry neighbour (first order at wet/dry fronts).
-inline CellFaces reconstruct(Prim m, int m_in, Prim c, Prim pl, int p_in) {
+INLINE CellFaces reconstruct(Prim m, int m_in, Prim c, Prim pl, int p_in) {
   real sh = 0, se = 0, su = 0, sv = 0;
   // First order at wet/dry fronts (a dry cell or a dry neighbour): on steep slopes a limited surface
   // slope in a dry cell can put its face bed above a wet neighbour's surface, which would block the
@@ -173,7 +173,7 @@ inline CellFaces reconstruct(Prim m, int m_in, Prim c, Prim pl, int p_in) {
 /// whenever the minmod bed left a face dry, the rule before, lost the surface's second order at
 /// every front on a slope: kot_dambreak at 5 m moves from 0.187 to 0.182 of relative L1 from the
 /// same rule's 2.5 m map, and from 0.259 to 0.252 from GeoClaw's, docs/validation.md.)
-inline CellFaces reconstruct_surface(Prim m, int m_in, Prim c, Prim pl, int p_in) {
+INLINE CellFaces reconstruct_surface(Prim m, int m_in, Prim c, Prim pl, int p_in) {
   CellFaces f = {c.h, c.h, c.e, c.e, c.un, c.un, c.ut, c.ut};
   if (!(m_in && p_in && c.h > (real)0)) return f;
   const real sb_dem = bed_minmod((c.e - c.h) - (m.e - m.h), (pl.e - pl.h) - (c.e - c.h));

@@ -21,7 +21,7 @@
 #define MANNING_ALONG_BED 1
 #endif
 
-inline real manning_factor(real n, real h, real u, real v, real bx, real by, real cos2, real dt) {
+INLINE real manning_factor(real n, real h, real u, real v, real bx, real by, real cos2, real dt) {
 #if MANNING_ALONG_BED
   const real w = u * bx + v * by;
 #else

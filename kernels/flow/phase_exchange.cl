@@ -34,7 +34,7 @@ typedef struct {
   real ms, mf;   // areal masses [kg/m^2]
 } DragStep;
 
-inline DragStep drag_step(__constant const DebrisParams* dp, real rho_s, real grain, real hs, real hf, const real* qs,
+INLINE DragStep drag_step(__constant const DebrisParams* dp, real rho_s, real grain, real hs, real hf, const real* qs,
                           const real* qf, real ds) {
   DragStep d;
   d.ms = rho_s * hs;
@@ -60,7 +60,7 @@ inline DragStep drag_step(__constant const DebrisParams* dp, real rho_s, real gr
 /// basal law acts on the solids alone and the fluid is left as it is. `col` is the basal column of
 /// the solids (basal_rheology.cl). Writes the new momenta and the basal impulse (px, py)
 /// [kg/(m s)] the bed takes; returns 1 where the basal law holds the solids (factor 0).
-inline int phase_exchange(__constant const DebrisParams* dp, real rho_s, real grain, BasalColumn col, real hs, real hf,
+INLINE int phase_exchange(__constant const DebrisParams* dp, real rho_s, real grain, BasalColumn col, real hs, real hf,
                           real* qs, real* qf, real ucx, real ucy, real ds, int coupled, real* px, real* py) {
   // (qax, qay) = h_s A, the solids' momentum after the drag alone: the momentum itself where there
   // is no drag, so that the law alone is evaluated on the momenta as they are (q -> u_c h + f (q -

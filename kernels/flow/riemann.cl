@@ -20,7 +20,7 @@ typedef struct {
 
 /// Wave-speed estimates of Toro (2001) for a shallow-water-type system with sound speeds cl, cr:
 /// two-rarefaction estimates where both sides are wet, the dry-bed speeds u -+ 2c otherwise.
-inline real2 wave_speeds(real hl, real ul, real cl, real hr, real ur, real cr) {
+INLINE real2 wave_speeds(real hl, real ul, real cl, real hr, real ur, real cr) {
   if (hl <= (real)0) return (real2)(ur - (real)2 * cr, ur + cr);
   if (hr <= (real)0) return (real2)(ul - cl, ul + (real)2 * cl);
   const real us = (real)0.5 * (ul + ur) + cl - cr;
@@ -31,7 +31,7 @@ inline real2 wave_speeds(real hl, real ul, real cl, real hr, real ur, real cr) {
 /// HLL flux (Harten, Lax & van Leer 1983) of mass, normal momentum and pressure between the left
 /// state (hl, ul, vl, pressure pl) and the right state (hr, ur, vr, pr), with wave speeds s = (sl, sr);
 /// the tangential momentum is upwinded across the contact wave (HLLC, Toro 2001) or HLL-averaged.
-inline FaceFlux hll_core(real hl, real ul, real vl, real pl, real hr, real ur, real vr, real pr, real2 s) {
+INLINE FaceFlux hll_core(real hl, real ul, real vl, real pl, real hr, real ur, real vr, real pr, real2 s) {
   FaceFlux f;
   const real sl = s.x, sr = s.y;
   const real ql = hl * ul, qr = hr * ur;
@@ -66,7 +66,7 @@ inline FaceFlux hll_core(real hl, real ul, real vl, real pl, real hr, real ur, r
 
 /// Shallow-water HLL/HLLC flux between (hl, ul, vl) and (hr, ur, vr), u normal, v tangential; g sets
 /// the wave speeds; the pressure part is h^2/2 (the cell multiplies it by its own g_p).
-inline FaceFlux riemann_flux(real hl, real ul, real vl, real hr, real ur, real vr, real g) {
+INLINE FaceFlux riemann_flux(real hl, real ul, real vl, real hr, real ur, real vr, real g) {
   if (hl <= (real)0 && hr <= (real)0) {
     FaceFlux f = {0, 0, 0, 0};
     return f;
@@ -99,7 +99,7 @@ typedef struct {
 /// free-surface shallow flows", sec. 4.4 and 12.3). Supercritical outflow (u_n >= c) needs no
 /// condition from outside: the ghost is the inside state. `s` is +1 when the outside is on the plus
 /// side, -1 when on the minus side. A lake at rest at the outside's level gets its own state back.
-inline void open_ghost(const Side* in, Side* gh, real s, real far) {
+INLINE void open_ghost(const Side* in, Side* gh, real s, real far) {
   *gh = *in;
   const real c = sqrt(in->g * in->h), un = s * in->un;  // un > 0: towards the outside
   if (un >= c) return;
@@ -123,7 +123,7 @@ typedef struct {
   FaceFlux r;
 } HydrostaticFace;
 
-inline HydrostaticFace hydrostatic_face(Side m, Side p) {
+INLINE HydrostaticFace hydrostatic_face(Side m, Side p) {
   HydrostaticFace f;
   f.zm = m.e - m.h;
   f.zp = p.e - p.h;
@@ -136,7 +136,7 @@ inline HydrostaticFace hydrostatic_face(Side m, Side p) {
 
 /// Replaces an outside side by the ghost of the inside one (see face_between); returns 1 when the
 /// face acts as a wall. Shared by the fluid and the solid fluxes.
-inline int ghost_sides(int m_in, Side* m, int p_in, Side* p, int kind) {
+INLINE int ghost_sides(int m_in, Side* m, int p_in, Side* p, int kind) {
   int wall = 0;
   if (!m_in) {
     wall = kind == BOUNDARY_WALL || p->un > (real)0;
@@ -159,7 +159,7 @@ inline int ghost_sides(int m_in, Side* m, int p_in, Side* p, int kind) {
 /// characteristic ghost of open_ghost against still water at level `far` outside (the inside cell's
 /// initial surface; for the two-phase fluid, over the solids). Walls pass no mass and no tangential
 /// momentum.
-inline Face face_between(int m_in, Side m, int p_in, Side p, int kind, real far) {
+INLINE Face face_between(int m_in, Side m, int p_in, Side p, int kind, real far) {
   Face f = {0, 0, 0, 0, 0, 0};
   if (!m_in && !p_in) return f;
   int wall = ghost_sides(m_in, &m, p_in, &p, kind);

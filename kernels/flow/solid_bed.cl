@@ -87,7 +87,7 @@
 
 /// Change of the reconstructed bed across cell c (plus face minus minus face) along one axis, from
 /// the beds of its neighbours (bm, bp; m_in, p_in: inside the domain).
-inline real bed_rise(real bm, int m_in, real bc, real bp, int p_in) {
+INLINE real bed_rise(real bm, int m_in, real bc, real bp, int p_in) {
   if (m_in && p_in) return bed_minmod(bc - bm, bp - bc);
   if (p_in) return bp - bc;
   if (m_in) return bc - bm;
@@ -105,8 +105,8 @@ typedef struct {
   real hold;
 } SolidSide;
 
-inline real side_pi(SolidSide s, real h) { return fmax((real)0, s.a * (h + s.hf) - s.c0); }
-inline real side_pressure(SolidSide s, real h) { return h * side_pi(s, h); }
+INLINE real side_pi(SolidSide s, real h) { return fmax((real)0, s.a * (h + s.hf) - s.c0); }
+INLINE real side_pressure(SolidSide s, real h) { return h * side_pi(s, h); }
 
 /// Force of a bed rise dz >= 0 at a face on the side s whose column (thickness h, h* above the face
 /// bed z*) moves into the face at u_in (points 3, 4): the column meets the rise over d = h - h* and
@@ -117,7 +117,7 @@ inline real side_pressure(SolidSide s, real h) { return h * side_pi(s, h); }
 /// d_b / h for the wall reaction. At rest all of it is stopped; fast flow over the small rises that
 /// the reconstruction leaves in a smooth bend is not (removing a share rise/h of its momentum at
 /// every face of a bend cost 95 % of the run-up in the valley of test_terrain_forcing.cpp).
-inline real rise_force(SolidSide s, real hstar, real dz, real u_in, real* beta) {
+INLINE real rise_force(SolidSide s, real hstar, real dz, real u_in, real* beta) {
   const real d = s.h - hstar;
   if (!(d > (real)0)) {
     *beta = (real)0;
@@ -139,7 +139,7 @@ typedef struct {
 /// The solid face between side m (minus) and side p (plus); conventions of face_between
 /// (riemann.cl) for outside sides (ghosts). `locked`: both cells static or empty, so no mass crosses
 /// and the sides touch at rest (point 6).
-inline SolidFace solid_face(int m_in, SolidSide m, int p_in, SolidSide p, int kind, int locked) {
+INLINE SolidFace solid_face(int m_in, SolidSide m, int p_in, SolidSide p, int kind, int locked) {
   SolidFace f = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
   if (!m_in && !p_in) return f;
   int wall = 0;
@@ -184,7 +184,7 @@ inline SolidFace solid_face(int m_in, SolidSide m, int p_in, SolidSide p, int ki
 
 /// The wall reaction of point 4 on the normal momentum q of a cell whose minus face blocks the
 /// fraction beta_lo of its column and whose plus face blocks beta_hi.
-inline real wall_reaction(real q, real beta_lo, real beta_hi) {
+INLINE real wall_reaction(real q, real beta_lo, real beta_hi) {
   if (q > (real)0) return q * ((real)1 - beta_hi);
   if (q < (real)0) return q * ((real)1 - beta_lo);
   return q;

@@ -64,7 +64,7 @@
 // with it, under the 48 KB a work-group may hold statically on NVIDIA devices.
 
 /// Primitive state of the cell at local position (a, b) of the tile + halo block, along `dir`.
-inline Prim local_prim(__local const real* lh, __local const real* le, __local const real* lu,
+INLINE Prim local_prim(__local const real* lh, __local const real* le, __local const real* lu,
                        __local const real* lv, int a, int b, int dir) {
   const int s = b * SPAN + a;
   Prim c;
@@ -76,7 +76,7 @@ inline Prim local_prim(__local const real* lh, __local const real* le, __local c
 }
 
 /// MUSCL face values of the local cell (a, b) along `dir` (neighbours at -1 and +1).
-inline CellFaces local_faces(__local const real* lh, __local const real* le, __local const real* lu,
+INLINE CellFaces local_faces(__local const real* lh, __local const real* le, __local const real* lu,
                              __local const real* lv, __local const uchar* lin, int a, int b, int dir) {
   const int da = dir == 0, db = dir == 1;
   const int m_in = lin[(b - db) * SPAN + a - da], p_in = lin[(b + db) * SPAN + a + da];
@@ -86,12 +86,12 @@ inline CellFaces local_faces(__local const real* lh, __local const real* le, __l
   return reconstruct_surface(m, m_in, c, p, p_in);
 }
 
-inline Side side_hi(CellFaces f, real g) { Side s = {f.h_hi, f.e_hi, f.un_hi, f.ut_hi, g}; return s; }
-inline Side side_lo(CellFaces f, real g) { Side s = {f.h_lo, f.e_lo, f.un_lo, f.ut_lo, g}; return s; }
+INLINE Side side_hi(CellFaces f, real g) { Side s = {f.h_hi, f.e_hi, f.un_hi, f.ut_hi, g}; return s; }
+INLINE Side side_lo(CellFaces f, real g) { Side s = {f.h_lo, f.e_lo, f.un_lo, f.ut_lo, g}; return s; }
 
 /// Local position of the minus-side cell of face q in row r along `dir` (the plus side is the next
 /// cell along `dir`). Face q = RING + t + 1 is the plus face of the tile's cell t of that row.
-inline int2 face_minus_cell(int q, int r, int dir) {
+INLINE int2 face_minus_cell(int q, int r, int dir) {
   const int along = HALO - RING + q - 1, across = HALO + r;
   return dir == 0 ? (int2)(along, across) : (int2)(across, along);
 }

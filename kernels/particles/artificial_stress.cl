@@ -9,7 +9,7 @@
 #include "common/real.cl"
 
 /// The artificial-stress tensor R (xx, yy, xy) of a particle from its S = N / rhoA^2.
-inline real4 artificial_stress(real eps, real sxx, real syy, real sxy) {
+INLINE real4 artificial_stress(real eps, real sxx, real syy, real sxy) {
   const real c = (real)0.5 * (sxx + syy), d = (real)0.5 * (sxx - syy);
   const real rad = sqrt(d * d + sxy * sxy);
   const real s1 = c + rad, s2 = c - rad;

@@ -140,27 +140,27 @@ typedef struct {
 } StressUpdate;
 
 /// 1 / sqrt(9 + 12 tan^2 a), the factor of the plane-strain Drucker-Prager fit (P.20).
-inline real dp_fit_factor(real angle) {
+INLINE real dp_fit_factor(real angle) {
   const real t = tan(angle);
   return (real)1 / sqrt((real)9 + (real)12 * t * t);
 }
 
 /// alpha_phi = tan(phi) / sqrt(9 + 12 tan^2 phi) (P.20, P.71); phi in radians, [0, pi/2).
-inline real dp_alpha(real phi) { return tan(phi) * dp_fit_factor(phi); }
+INLINE real dp_alpha(real phi) { return tan(phi) * dp_fit_factor(phi); }
 
 /// k_c = 3 c / sqrt(9 + 12 tan^2 phi) [Pa] (P.20, P.71); c the current cohesion [Pa].
-inline real dp_cohesion_term(real c, real phi) { return (real)3 * c * dp_fit_factor(phi); }
+INLINE real dp_cohesion_term(real c, real phi) { return (real)3 * c * dp_fit_factor(phi); }
 
 /// Dilatancy coefficient alpha_psi of the plastic potential g = alpha_psi I1 + sqrt(J2): the same
 /// plane-strain fit as alpha_phi (see the header, step 5, for why not Bui's 3 sin psi).
-inline real dp_dilatancy_coefficient(real psi) { return tan(psi) * dp_fit_factor(psi); }
+INLINE real dp_dilatancy_coefficient(real psi) { return tan(psi) * dp_fit_factor(psi); }
 
 /// The update constants from the shear modulus G and the in-plane bulk modulus K2 [Pa] (both
 /// positive), friction angle phi, cohesion c [Pa] (the current, possibly degraded, value) and
 /// dilatancy angle psi [rad]. The particle kernels get G and K2 from the host, computed in double
 /// from E and nu: the in-plane law needs them, and reconstructing nu in float from large moduli
 /// (G = 1e14 Pa with E = 1e7 Pa is nu = -1 + 5e-8) is not possible.
-inline DPMaterial dp_material_of_moduli(real G, real K2, real phi, real c, real psi) {
+INLINE DPMaterial dp_material_of_moduli(real G, real K2, real phi, real c, real psi) {
   DPMaterial m;
   m.G = G;
   m.K2 = K2;
@@ -172,19 +172,19 @@ inline DPMaterial dp_material_of_moduli(real G, real K2, real phi, real c, real 
 
 /// The same from Young's modulus E [Pa] and Poisson's ratio nu [-] (P.14): G = E / (2 (1 + nu)),
 /// K2 = E / (2 (1 - nu)).
-inline DPMaterial dp_material(real E, real nu, real phi, real c, real psi) {
+INLINE DPMaterial dp_material(real E, real nu, real phi, real c, real psi) {
   return dp_material_of_moduli(E / ((real)2 * ((real)1 + nu)), E / ((real)2 * ((real)1 - nu)), phi, c, psi);
 }
 
 /// I1 and J2 of the 3D state (xx, yy, szz, xy) with zero out-of-plane shears (P.18, P.19).
-inline void dp_invariants(PlaneStress s, real szz, real* I1, real* J2) {
+INLINE void dp_invariants(PlaneStress s, real szz, real* I1, real* J2) {
   const real p2 = (real)0.5 * (s.xx + s.yy), d = (real)0.5 * (s.xx - s.yy), q = p2 - szz;
   *I1 = (real)2 * p2 + szz;
   *J2 = d * d + s.xy * s.xy + q * q / (real)3;
 }
 
 /// The yield function f = alpha_phi I1 + sqrt(J2) - k_c (P.16) of the 3D state; f <= 0 admissible.
-inline real dp_yield(PlaneStress s, real szz, DPMaterial m) {
+INLINE real dp_yield(PlaneStress s, real szz, DPMaterial m) {
   real I1, J2;
   dp_invariants(s, szz, &I1, &J2);
   return m.alpha_phi * I1 + sqrt(J2) - m.k_c;
@@ -192,7 +192,7 @@ inline real dp_yield(PlaneStress s, real szz, DPMaterial m) {
 
 /// The co-rotational (Jaumann) part of one step, integrated exactly: Q s Q^T with Q = exp(w dt),
 /// w = spin_xy = (L_xy - L_yx)/2 [1/s]. Leaves the in-plane mean and R unchanged.
-inline PlaneStress stress_rotate(PlaneStress s, real spin_xy, real dt) {
+INLINE PlaneStress stress_rotate(PlaneStress s, real spin_xy, real dt) {
   const real angle = (real)2 * spin_xy * dt;
   const real cs = cos(angle), sn = sin(angle);
   const real p2 = (real)0.5 * (s.xx + s.yy), d = (real)0.5 * (s.xx - s.yy);
@@ -207,7 +207,7 @@ inline PlaneStress stress_rotate(PlaneStress s, real spin_xy, real dt) {
 /// Stress remapping with sigma_zz held (header, step 6; P.89-P.94). With snap = 0 it acts only on
 /// states outside the surface (f > 0); with snap = 1 (after a plastic corrector) a state inside is
 /// also scaled out onto the surface when it has an in-plane deviator. Adds CONS_* bits to *flags.
-inline PlaneStress dp_remap(PlaneStress s, real szz, DPMaterial m, int snap, int* flags) {
+INLINE PlaneStress dp_remap(PlaneStress s, real szz, DPMaterial m, int snap, int* flags) {
   const real alpha = m.alpha_phi, kc = m.k_c;
   if (!snap && !(dp_yield(s, szz, m) > (real)0)) return s;
   const real inv_sqrt3 = (real)0.57735026918962576451;
@@ -250,7 +250,7 @@ inline PlaneStress dp_remap(PlaneStress s, real szz, DPMaterial m, int snap, int
 /// stress at the start of the step and receives the new one; L the velocity gradient [1/s]; szz
 /// the vertical stress -1/2 rho_c g_n H [Pa] (P.41); m from dp_material. Returns the plastic
 /// multiplier, the volumetric strain rate and the CONS_* flags (0: elastic).
-inline StressUpdate stress_update(PlaneStress* s, VelocityGradient L, real szz, DPMaterial m, real dt) {
+INLINE StressUpdate stress_update(PlaneStress* s, VelocityGradient L, real szz, DPMaterial m, real dt) {
   StressUpdate u;
   u.dlambda = (real)0;
   u.flags = 0;
@@ -298,7 +298,7 @@ inline StressUpdate stress_update(PlaneStress* s, VelocityGradient L, real szz, 
 /// Cohesion after one step (P.26): while the particle yields and c > 0,
 /// c <- max(0, c - dt c0 |eps'_v| / (2 eps_c)); otherwise unchanged. Never rises, never below 0
 /// (for c >= 0). eps_c > 0 is the critical volumetric strain [-].
-inline real cohesion_degrade(real c, real c0, real eps_v_rate, real eps_c, real dt, int yielding) {
+INLINE real cohesion_degrade(real c, real c0, real eps_v_rate, real eps_c, real dt, int yielding) {
   if (!yielding || !(c > (real)0)) return c;
   const real drop = dt * c0 * fabs(eps_v_rate) / ((real)2 * eps_c);
   return fmax((real)0, c - drop);
@@ -306,14 +306,14 @@ inline real cohesion_degrade(real c, real c0, real eps_v_rate, real eps_c, real 
 
 /// Fraction of intact bonds c/c0, clipped to [0, 1]; 1 for a material that never had cohesion
 /// (c0 <= 0: nothing to break, the fractions keep their initial values).
-inline real bond_fraction(real c, real c0) {
+INLINE real bond_fraction(real c, real c0) {
   if (!(c0 > (real)0)) return (real)1;
   return fmin((real)1, fmax((real)0, c / c0));
 }
 
 /// Structured and confined-fluid fractions following the intact bonds (spec §5, P.27-P.28):
 /// f_sc = f_sc0 c/c0, f_fc = f_fc0 c/c0.
-inline void structure_fractions(real c, real c0, real fsc0, real ffc0, real* fsc, real* ffc) {
+INLINE void structure_fractions(real c, real c0, real fsc0, real ffc0, real* fsc, real* ffc) {
   const real b = bond_fraction(c, c0);
   *fsc = fsc0 * b;
   *ffc = ffc0 * b;

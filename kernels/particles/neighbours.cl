@@ -51,7 +51,7 @@ typedef struct {
 
 /// Cell (column, row) of a position, or (-1, -1) outside the box or for NaN. The column is
 /// floor((x - x_min) / cell_size) clamped to the last column, so x == x_max belongs to the grid.
-inline int2 neighbour_cell_of(__constant const NeighbourGridParams* g, real x, real y) {
+INLINE int2 neighbour_cell_of(__constant const NeighbourGridParams* g, real x, real y) {
   if (!(x >= g->x_min && x <= g->x_max && y >= g->y_min && y <= g->y_max)) return (int2)(-1, -1);
   // Clamped before the conversion to int as well, so no huge quotient overflows it.
   const real qx = min(floor((x - g->x_min) / g->cell_size), (real)(g->cells_x - 1));
@@ -60,18 +60,18 @@ inline int2 neighbour_cell_of(__constant const NeighbourGridParams* g, real x, r
 }
 
 /// Row-major key of cell (cx, cy) of the grid.
-inline uint neighbour_cell_key(__constant const NeighbourGridParams* g, int cx, int cy) {
+INLINE uint neighbour_cell_key(__constant const NeighbourGridParams* g, int cx, int cy) {
   return (uint)cy * (uint)g->cells_x + (uint)cx;
 }
 
 /// Key of the cell holding a position, CELL_KEY_OUTSIDE outside the box.
-inline uint neighbour_key_of(__constant const NeighbourGridParams* g, real x, real y) {
+INLINE uint neighbour_key_of(__constant const NeighbourGridParams* g, real x, real y) {
   const int2 c = neighbour_cell_of(g, x, y);
   return c.x < 0 ? CELL_KEY_OUTSIDE : neighbour_cell_key(g, c.x, c.y);
 }
 
 /// The cells to visit for the neighbours of a particle at (x, y) (see the loop in the header).
-inline NeighbourCellRange neighbour_cells_around(__constant const NeighbourGridParams* g, real x, real y) {
+INLINE NeighbourCellRange neighbour_cells_around(__constant const NeighbourGridParams* g, real x, real y) {
   const int2 c = neighbour_cell_of(g, x, y);
   NeighbourCellRange r;
   if (c.x < 0) {

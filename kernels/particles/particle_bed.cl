@@ -40,13 +40,13 @@ __kernel void particle_cell_velocity(const int n, __global const real* Mc, __glo
 }
 
 /// 1 when cell (i, j) lies on the raster and holds particles.
-inline int holds_particles(int nx, int ny, __global const real* Mc, int i, int j) {
+INLINE int holds_particles(int nx, int ny, __global const real* Mc, int i, int j) {
   return i >= 0 && j >= 0 && i < nx && j < ny && Mc[j * nx + i] > (real)0;
 }
 
 /// Share of the impulse of cell (i, j) (without particles) that each of its neighbours with
 /// particles takes: 1 / their number (0 when it has none).
-inline real neighbour_share(int nx, int ny, __global const real* Mc, int i, int j) {
+INLINE real neighbour_share(int nx, int ny, __global const real* Mc, int i, int j) {
   const int c = holds_particles(nx, ny, Mc, i - 1, j) + holds_particles(nx, ny, Mc, i + 1, j) +
                 holds_particles(nx, ny, Mc, i, j - 1) + holds_particles(nx, ny, Mc, i, j + 1);
   return c > 0 ? (real)1 / (real)c : (real)0;

@@ -42,7 +42,7 @@ typedef struct {
 /// t = (b11 - b10 - b01 + b00) / dx, computed by the host in double (ParticleSolver): a plane then
 /// has the same gradient to the last bit everywhere, and no difference of two large elevations is
 /// taken in float. In the patch, grad b = (e_x + t v, e_y + t u) at the fractional position (u, v).
-inline real2 bed_gradient(__constant const ParticleParams* p, __global const real* patch, real x, real y) {
+INLINE real2 bed_gradient(__constant const ParticleParams* p, __global const real* patch, real x, real y) {
   const real fx = x / p->dx - (real)0.5, fy = y / p->dx - (real)0.5;
   const int i0 = clamp((int)floor(fx), 0, max(p->nx - 2, 0)), j0 = clamp((int)floor(fy), 0, max(p->ny - 2, 0));
   const int k = j0 * p->nx + i0, n = p->nx * p->ny;
@@ -56,7 +56,7 @@ inline real2 bed_gradient(__constant const ParticleParams* p, __global const rea
 
 /// The gravity normal to the bed of gradient `slope`, g_n = g / (1 + |grad b|^2) = g cos^2(theta)
 /// (spec §1); g itself with `Slope Correction=0` (PARTICLE_METRIC 0, the flat-bed equations).
-inline real bed_normal_gravity(real2 slope) {
+INLINE real bed_normal_gravity(real2 slope) {
 #if PARTICLE_METRIC
   return (real)GRAVITY / ((real)1 + slope.x * slope.x + slope.y * slope.y);
 #else
@@ -65,7 +65,7 @@ inline real bed_normal_gravity(real2 slope) {
 }
 
 /// Index of the terrain cell holding (x, y), or -1 outside the raster.
-inline int terrain_cell(__constant const ParticleParams* p, real x, real y) {
+INLINE int terrain_cell(__constant const ParticleParams* p, real x, real y) {
   if (!(x >= (real)0 && y >= (real)0)) return -1;
   const real fx = floor(x / p->dx), fy = floor(y / p->dx);
   if (fx >= (real)p->nx || fy >= (real)p->ny) return -1;

@@ -35,12 +35,12 @@ typedef struct {
   real vol, area;
 } ThicknessSums;
 
-inline void thickness_add(ThicknessSums* t, real Vj, real Aj, real w) {
+INLINE void thickness_add(ThicknessSums* t, real Vj, real Aj, real w) {
   t->vol += Vj * w;
   t->area += Aj * w;
 }
 
 /// H_i = sum V_j W_ij / sum A_j W_ij.
-inline real thickness_of(ThicknessSums t) { return t.vol / t.area; }
+INLINE real thickness_of(ThicknessSums t) { return t.vol / t.area; }
 
 #endif

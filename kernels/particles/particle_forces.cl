@@ -43,7 +43,7 @@ typedef struct {
 
 /// The pair (i, j) within the support (r2 < 4 h^2, j != i) added to particle i's sums; fw the factor
 /// of its kernel gradient; `own` holds i's correction (0-2), stress (3-5) and artificial stress (6-8).
-inline void add_pair(__constant const ParticleParams* p, ForceSums* acc, int i, uint j, real dx, real dy, real r2, real fw,
+INLINE void add_pair(__constant const ParticleParams* p, ForceSums* acc, int i, uint j, real dx, real dy, real r2, real fw,
                      real vxi, real vyi, const real* own, int ri_on, __global const real* vx, __global const real* vy,
                      __global const real* m, __global const real* A, __global const real* rhoA,
                      __global const real* Nxx, __global const real* Nyy, __global const real* Nxy,

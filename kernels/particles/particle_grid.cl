@@ -53,7 +53,7 @@
 #include "particles/neighbours.cl"
 
 /// The centred cubic B-spline N(d) of P.87 (cell-centre units; support |d| < 2).
-inline real pg_bspline(real d) {
+INLINE real pg_bspline(real d) {
   const real a = fabs(d);
   if (a < (real)1) return ((real)0.5 * a - (real)1) * a * a + (real)2 / (real)3;
   if (a < (real)2) {
@@ -64,13 +64,13 @@ inline real pg_bspline(real d) {
 }
 
 /// Position in cell-centre units along one axis: f = x / dx - 1/2 (cell k's centre is at f = k).
-inline real pg_centre_coord(real x, real dx) { return x / dx - (real)0.5; }
+INLINE real pg_centre_coord(real x, real dx) { return x / dx - (real)0.5; }
 
 /// The folded weight of cell i (0 <= i < n) along one axis for a particle at f (see the header):
 /// N(f - i) for an inner cell, the sum of N(f - k) over the stencil cells k that fold onto i for the
 /// edge cells 0 and n - 1. Clamping f to [-3, n + 2] changes nothing (beyond it every stencil cell
 /// folds onto one edge cell and the weights sum to 1 either way) and keeps the int conversion finite.
-inline real pg_axis_weight(real f, int i, int n) {
+INLINE real pg_axis_weight(real f, int i, int n) {
   if (i > 0 && i < n - 1) return pg_bspline(f - (real)i);
   const real fc = clamp(f, (real)-3, (real)(n + 2));
   const int kb = (int)floor(fc);
@@ -84,7 +84,7 @@ inline real pg_axis_weight(real f, int i, int n) {
 /// cells first..last of n along an axis: the interval (c_first - 2 dx, c_last + 2 dx) around their
 /// centres, open-ended on the side of an edge cell, widened by 1/64 cell and clamped to the grid.
 /// Returns (first column, last column), inclusive.
-inline int2 pg_neighbour_span(int first, int last, int n, real dx, real lo_box, real cell_size, int cells) {
+INLINE int2 pg_neighbour_span(int first, int last, int n, real dx, real lo_box, real cell_size, int cells) {
   const real margin = (real)0.015625;
   int2 r = (int2)(0, cells - 1);
   if (first > 0) {
@@ -112,7 +112,7 @@ typedef struct {
 } PgBlock;
 
 /// Block b of an nx x ny raster (row-major over blocks); ni = 0 for a work-item past the end.
-inline PgBlock pg_block(__constant const NeighbourGridParams* g, int b, int nx, int ny, real dx) {
+INLINE PgBlock pg_block(__constant const NeighbourGridParams* g, int b, int nx, int ny, real dx) {
   PgBlock k;
   const int bx = (nx + PG_BLOCK - 1) / PG_BLOCK, by = (ny + PG_BLOCK - 1) / PG_BLOCK;
   k.ni = 0, k.nj = 0, k.i0 = 0, k.j0 = 0;
@@ -134,7 +134,7 @@ inline PgBlock pg_block(__constant const NeighbourGridParams* g, int b, int nx, 
 
 /// The weights of the particle at (xp, yp) for the block's cells: w[r * PG_BLOCK + m] for cell
 /// (i0 + m, j0 + r) (0 for cells beyond the raster). Returns 0 when all of them are 0.
-inline int pg_block_weights(const PgBlock* k, real xp, real yp, int nx, int ny, real dx, real* w) {
+INLINE int pg_block_weights(const PgBlock* k, real xp, real yp, int nx, int ny, real dx, real* w) {
   const real fx = pg_centre_coord(xp, dx), fy = pg_centre_coord(yp, dx);
   real wx[PG_BLOCK], wy[PG_BLOCK];
   for (int m = 0; m < PG_BLOCK; ++m) {
@@ -151,7 +151,7 @@ inline int pg_block_weights(const PgBlock* k, real xp, real yp, int nx, int ny, 
 }
 
 /// pg_block_weights for a particle inside the block's reach (the cheap pre-filter first), else 0.
-inline int pg_particle_weights(const PgBlock* k, real xp, real yp, int nx, int ny, real dx, real* w) {
+INLINE int pg_particle_weights(const PgBlock* k, real xp, real yp, int nx, int ny, real dx, real* w) {
   if (xp <= k->reach.s0 || xp >= k->reach.s1 || yp <= k->reach.s2 || yp >= k->reach.s3) return 0;
   return pg_block_weights(k, xp, yp, nx, ny, dx, w);
 }
@@ -242,7 +242,7 @@ typedef struct {
 } PgStencil;
 
 /// Stencil of the particle at (x, y); `ok` is 0 for a non-finite position (no weights).
-inline PgStencil pg_stencil_of(real x, real y, int nx, int ny, real dx, int* ok) {
+INLINE PgStencil pg_stencil_of(real x, real y, int nx, int ny, real dx, int* ok) {
   PgStencil s;
   const real fx = pg_centre_coord(x, dx), fy = pg_centre_coord(y, dx);
   *ok = isfinite(fx) && isfinite(fy);
@@ -259,7 +259,7 @@ inline PgStencil pg_stencil_of(real x, real y, int nx, int ny, real dx, int* ok)
 }
 
 /// sum over the stencil of w f (rows outer, columns inner).
-inline real pg_sample(const PgStencil* s, __global const real* f, int nx) {
+INLINE real pg_sample(const PgStencil* s, __global const real* f, int nx) {
   real sum = 0;
   for (int r = 0; r < 4; ++r) {
     real row = 0;

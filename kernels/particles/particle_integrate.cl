@@ -46,7 +46,7 @@
 /// (d = +1 or -1): the neighbour's face value minus ours. Where the neighbour is not a domain cell
 /// of the raster, infinite if that boundary is a wall (`Boundary Type`, `Nodata Boundary Type`:
 /// nothing crosses it), else 0 (the particle crosses and leaves as outflow).
-inline real face_rise(__constant const ParticleParams* p, __global const uchar* mask, __global const real* bed,
+INLINE real face_rise(__constant const ParticleParams* p, __global const uchar* mask, __global const real* bed,
                       __global const real* lslope, int here, int a, int b, int axis, int d) {
   if (a < 0 || b < 0 || a >= p->nx || b >= p->ny) return p->edge_wall ? (real)INFINITY : (real)0;
   if (!mask[b * p->nx + a]) return p->nodata_wall ? (real)INFINITY : (real)0;
@@ -59,7 +59,7 @@ inline real face_rise(__constant const ParticleParams* p, __global const uchar* 
 /// Kinetic energy of a particle of mass m moving with horizontal velocity (u, v) on a bed of gradient
 /// (bx, by): m (|v|^2 + (v . grad b)^2) / 2 (the metric G of the internal forces, below; with
 /// `Slope Correction=0` the flat bed's m |v|^2 / 2).
-inline real kinetic_on_bed(real m, real u, real v, real bx, real by) {
+INLINE real kinetic_on_bed(real m, real u, real v, real bx, real by) {
 #if PARTICLE_METRIC
   const real w = u * bx + v * by;
 #else

@@ -22,12 +22,12 @@ typedef struct {
 } MaterialState;
 
 /// Bell-Rankine lateral stress (tension positive, never tensile): -max(0, K p_zz - 2 c sqrt(K)).
-inline real bell_rankine(real K, real pzz, real c) {
+INLINE real bell_rankine(real K, real pzz, real c) {
   return -fmax((real)0, K * pzz - (real)2 * c * sqrt(K));
 }
 
 /// Advances the particle's stress and cohesion by dt; returns the lateral stress sigma_lat.
-inline real particle_material_update(__constant const ParticleParams* p, MaterialState* s, real L00, real L01,
+INLINE real particle_material_update(__constant const ParticleParams* p, MaterialState* s, real L00, real L01,
                                      real L10, real L11, real pzz, real K, real phi, real c0, real dt) {
   const real lat = bell_rankine(K, pzz, s->c);
   PlaneStress total = {s->sxx + lat, s->syy + lat, s->sxy};

@@ -33,7 +33,7 @@
 /// K of a particle whose velocity field has the divergence tr L: constant, or Savage-Hutter with the
 /// grid's ramp from active to passive over the contraction rate -tr L (common/earth_pressure.cl; it
 /// used to switch on the sign of tr L, which flips K on the velocity noise of a settling deposit).
-inline real particle_earth_pressure(__constant const ParticleParams* p, real phi, real delta, real divergence,
+INLINE real particle_earth_pressure(__constant const ParticleParams* p, real phi, real delta, real divergence,
                                     real gn, real H) {
   if (p->earth_pressure == PARTICLE_EARTH_CONSTANT) return p->k_const;
   return earth_pressure(phi, delta, passive_share_of_rate(-divergence, gn, H));

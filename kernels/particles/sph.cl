@@ -12,7 +12,7 @@
 #define SPH_SIGMA_2D ((real)0.45472840883398667)  // 10 / (7 pi)
 
 /// W(r, h) [1/m^2].
-inline real sph_w(real r, real h) {
+INLINE real sph_w(real r, real h) {
   const real q = r / h, s = SPH_SIGMA_2D / (h * h);
   if (q < (real)1) return s * ((real)1 - (real)1.5 * q * q + (real)0.75 * q * q * q);
   if (q < (real)2) {
@@ -23,7 +23,7 @@ inline real sph_w(real r, real h) {
 }
 
 /// dW/dr (r, h) [1/m^3].
-inline real sph_dwdr(real r, real h) {
+INLINE real sph_dwdr(real r, real h) {
   const real q = r / h, s = SPH_SIGMA_2D / (h * h * h);
   if (q < (real)1) return s * (-(real)3 * q + (real)2.25 * q * q);
   if (q < (real)2) {
@@ -34,9 +34,9 @@ inline real sph_dwdr(real r, real h) {
 }
 
 /// The factor f of grad_i W = f d at distance r = |d|, d = x_i - x_j: dW/dr / r, and 0 at r = 0.
-inline real sph_grad_factor_at(real r, real h) { return r <= (real)0 ? (real)0 : sph_dwdr(r, h) / r; }
+INLINE real sph_grad_factor_at(real r, real h) { return r <= (real)0 ? (real)0 : sph_dwdr(r, h) / r; }
 
 /// The same from d = x_i - x_j; grad_i W(|d|, h) = sph_grad_factor(d, h) d.
-inline real sph_grad_factor(real2 d, real h) { return sph_grad_factor_at(sqrt(d.x * d.x + d.y * d.y), h); }
+INLINE real sph_grad_factor(real2 d, real h) { return sph_grad_factor_at(sqrt(d.x * d.x + d.y * d.y), h); }
 
 #endif

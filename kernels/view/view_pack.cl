@@ -16,7 +16,7 @@
 #define PACK_NORM 7       // |(a, b)|
 
 /// |q| / h where h exceeds the dry threshold, else 0 (the host's speed()).
-inline real pack_speed(real qx, real qy, real h, real hDry) { return h > hDry ? hypot(qx, qy) / h : (real)0; }
+INLINE real pack_speed(real qx, real qy, real h, real hDry) { return h > hDry ? hypot(qx, qy) / h : (real)0; }
 
 /// out[k] = mode(a..f)[k] as float for k < n; `noValue` where `valid` (when given, useMask != 0)
 /// is 0 and where the result is not finite (NaN for snapshots, the shaders' no-data value when the
