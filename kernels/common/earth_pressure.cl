@@ -8,10 +8,27 @@
 /// Savage & Hutter (1989) earth-pressure coefficient: K = 2/cos^2(phi) (1 -+ sqrt(1 - cos^2(phi) /
 /// cos^2(delta))) - 1, active (-, the flow extends) or passive (+, it contracts); the root's argument
 /// is clipped at zero when delta > phi. `passive` in [0, 1] blends linearly from K_act (0) to K_pass (1).
-INLINE real earth_pressure(real phi, real delta, real passive) {
+/// The two parts of K that depend on the material only (a = 2 / cos^2(phi) and the root), so a
+/// kernel that needs K of one material at several rates evaluates the trigonometry once
+/// (debris_stage.cl); earth_pressure_at then gives bitwise the value of earth_pressure.
+typedef struct {
+  real a, root;
+} EarthPressureTerms;
+
+INLINE EarthPressureTerms earth_pressure_terms(real phi, real delta) {
   const real cp = cos(phi), cd = cos(delta);
-  const real root = sqrt(fmax((real)0, (real)1 - cp * cp / (cd * cd)));
-  return (real)2 / (cp * cp) * ((real)1 + ((real)2 * passive - (real)1) * root) - (real)1;
+  EarthPressureTerms t;
+  t.root = sqrt(fmax((real)0, (real)1 - cp * cp / (cd * cd)));
+  t.a = (real)2 / (cp * cp);
+  return t;
+}
+
+INLINE real earth_pressure_at(EarthPressureTerms t, real passive) {
+  return t.a * ((real)1 + ((real)2 * passive - (real)1) * t.root) - (real)1;
+}
+
+INLINE real earth_pressure(real phi, real delta, real passive) {
+  return earth_pressure_at(earth_pressure_terms(phi, delta), passive);
 }
 
 /// Passive share of K for material contracting at the strain rate `rate` [1/s] (> 0 contracting):

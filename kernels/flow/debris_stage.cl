@@ -54,6 +54,7 @@
 #define DEBRIS_CURVATURE 0
 #endif
 
+#define MSPAN (TILE + 2)  // the tile and its one-cell halo, for the material's trigonometry
 #define NSOLID 8   // solid state components: h_s, q_sx, q_sy, h_s phi, h_s rho_s, h_s d, h_s c, h_s w
 // The passive scalars among them (from component 3) that move: the lift-off speed only where the
 // curvature term is compiled in (without it the component stays 0 and costs no flux).
@@ -162,7 +163,8 @@ INLINE SolidSide solid_side(real h, real z, real un, real ut, real hf, real K, M
 /// The push a static column (thickness hs, material m, g_n of its cell) holds through one face beyond
 /// its own pressure (solid_bed.cl, point 6): half its basal strength at rest over the cell's area, per
 /// unit width [m^3/s^2].
-INLINE real static_hold(__constant const FlowParams* p, __constant const DebrisParams* dp, real hs, Material m, real gn) {
+INLINE real static_hold(__constant const FlowParams* p, __constant const DebrisParams* dp, real hs, Material m, real tan_delta,
+                        real gn) {
   if (!(hs > p->h_dry)) return (real)0;
   BasalColumn c;
   c.h_st = hs;
@@ -172,7 +174,7 @@ INLINE real static_hold(__constant const FlowParams* p, __constant const DebrisP
   c.cos_t = sqrt(gn / (real)GRAVITY);
   c.stretch = 1;
   c.rho = m.rho_s;
-  c.tan_delta = tan(m.delta);
+  c.tan_delta = tan_delta;
   return (real)0.5 * basal_strength(dp, c) * p->dx;
 }
 
@@ -217,7 +219,8 @@ INLINE real column_kinetic(__constant const DebrisParams* dp, real hs, const rea
   return (real)0.5 * e;
 }
 
-__kernel void debris_stage(__constant const FlowParams* p, __constant const DebrisParams* dp,
+__kernel __attribute__((reqd_work_group_size(TILE, TILE, 1)))
+void debris_stage(__constant const FlowParams* p, __constant const DebrisParams* dp,
                            __global const uchar* mask, __global const int* tile_list, __global const real* b,
                            __global const real* gp, __global const real* gn, __global const real* far_level,
                            __global const real* manning,
@@ -232,8 +235,33 @@ __kernel void debris_stage(__constant const FlowParams* p, __constant const Debr
                            const real w_out, const real ds, const int first_stage) {
   const int2 cc = tile_cell(p, tile_list);
   const int i = cc.x, j = cc.y;
-  if (i >= p->nx || j >= p->ny || !cell_inside(p, mask, i, j)) return;
   const int n = p->nx * p->ny;
+  // The material's trigonometry, once per cell of the tile and its one-cell halo: the stage needs it
+  // for each cell and its four neighbours (earth pressure, the static contacts' strength), and its
+  // cos and tan were 37 % of the step when each use evaluated them again (docs/performance.md).
+  __local real l_ka[MSPAN * MSPAN], l_kroot[MSPAN * MSPAN], l_tand[MSPAN * MSPAN];
+  {
+    const int x0 = i - (int)get_local_id(0) - 1, y0 = j - (int)get_local_id(1) - 1;
+    for (int s = get_local_id(1) * TILE + get_local_id(0); s < MSPAN * MSPAN; s += TILE * TILE) {
+      const int gi = x0 + s % MSPAN, gj = y0 + s / MSPAN;
+      real ka = 0, kroot = 0, tand = 0;
+      if (cell_inside(p, mask, gi, gj)) {
+        const Material m = material_of(p, dp, S_st, hf_st, delta, cell_index(p, gi, gj), n);
+        if (dp->earth_pressure != EARTH_CONSTANT) {
+          const EarthPressureTerms t = earth_pressure_terms(m.phi, m.delta);
+          ka = t.a;
+          kroot = t.root;
+        }
+        tand = tan(m.delta);
+      }
+      l_ka[s] = ka;
+      l_kroot[s] = kroot;
+      l_tand[s] = tand;
+    }
+  }
+  barrier(CLK_LOCAL_MEM_FENCE);
+  if (i >= p->nx || j >= p->ny || !cell_inside(p, mask, i, j)) return;
+  const int lc = ((int)get_local_id(1) + 1) * MSPAN + (int)get_local_id(0) + 1;  // this cell in the halo block
   const int k = cell_index(p, i, j);
   const real g = gp[k], gnk = gn[k];
   const real dtdx = dt / p->dx;
@@ -261,6 +289,7 @@ __kernel void debris_stage(__constant const FlowParams* p, __constant const Debr
     const int di = dir == 0, dj = dir == 1;
     const int m_in = cell_inside(p, mask, i - di, j - dj), p_in = cell_inside(p, mask, i + di, j + dj);
     const int km = m_in ? cell_index(p, i - di, j - dj) : k, kp = p_in ? cell_index(p, i + di, j + dj) : k;
+    const int lm = m_in ? lc - dj * MSPAN - di : lc, lp = p_in ? lc + dj * MSPAN + di : lc;  // their halo-block slots
     // Reconstructions of this cell and of its two neighbours along dir (each from its own neighbours).
     const Prim2 c0 = load_prim2(p, dp, S_st, hf_st, qfx_st, qfy_st, b, pbed, k, n, dir);
     const Prim2 cm = load_prim2(p, dp, S_st, hf_st, qfx_st, qfy_st, b, pbed, km, n, dir);
@@ -301,9 +330,10 @@ __kernel void debris_stage(__constant const FlowParams* p, __constant const Debr
     if (dp->earth_pressure == EARTH_CONSTANT) {
       Km = Kc = Kp = dp->k_const;
     } else {
-      Km = earth_pressure(mm.phi, mm.delta, passive_share(fm_cell.hi.us - fm_cell.lo.us, p->dx, gn[km], cm.hs + cm.hf));
-      Kc = earth_pressure(mc.phi, mc.delta, passive_share(own.hi.us - own.lo.us, p->dx, gnk, c0.hs + c0.hf));
-      Kp = earth_pressure(mp.phi, mp.delta, passive_share(fp_cell.hi.us - fp_cell.lo.us, p->dx, gn[kp], cp.hs + cp.hf));
+      const EarthPressureTerms tm = {l_ka[lm], l_kroot[lm]}, tc = {l_ka[lc], l_kroot[lc]}, tp = {l_ka[lp], l_kroot[lp]};
+      Km = earth_pressure_at(tm, passive_share(fm_cell.hi.us - fm_cell.lo.us, p->dx, gn[km], cm.hs + cm.hf));
+      Kc = earth_pressure_at(tc, passive_share(own.hi.us - own.lo.us, p->dx, gnk, c0.hs + c0.hf));
+      Kp = earth_pressure_at(tp, passive_share(fp_cell.hi.us - fp_cell.lo.us, p->dx, gn[kp], cp.hs + cp.hf));
     }
     SolidSide smL = solid_side(fm_cell.hi.hs, fm_cell.hi.zb, fm_cell.hi.us, fm_cell.hi.vs, fm_cell.hi.hf, Km, mm,
                                gm, gn[km]);
@@ -315,10 +345,10 @@ __kernel void debris_stage(__constant const FlowParams* p, __constant const Debr
     const int lk = lock_st[k];
     const int lock_m = lk && (!m_in || lock_st[km]), lock_p = lk && (!p_in || lock_st[kp]);
     if (lk) {
-      const real hold_c = static_hold(p, dp, c0.hs, mc, gnk);
+      const real hold_c = static_hold(p, dp, c0.hs, mc, l_tand[lc], gnk);
       smR.hold = spL.hold = hold_c;
-      if (lock_m) smL.hold = m_in ? static_hold(p, dp, cm.hs, mm, gn[km]) : hold_c;
-      if (lock_p) spR.hold = p_in ? static_hold(p, dp, cp.hs, mp, gn[kp]) : hold_c;
+      if (lock_m) smL.hold = m_in ? static_hold(p, dp, cm.hs, mm, l_tand[lm], gn[km]) : hold_c;
+      if (lock_p) spR.hold = p_in ? static_hold(p, dp, cp.hs, mp, l_tand[lp], gn[kp]) : hold_c;
     }
     const SolidFace Sm = solid_face(m_in, smL, 1, smR, kind_m, lock_m);
     const SolidFace Sp = solid_face(1, spL, p_in, spR, kind_p, lock_p);
