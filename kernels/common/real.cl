@@ -10,8 +10,9 @@
 // Every helper function is inlined into the kernel that calls it. LLVM's cost model (PoCL) kept the
 // larger ones (the reconstruction, the face flux, the solids' face) as calls inside the work-item
 // loop, one call per work-item: in double the water stage ran at 0.6 of its inlined speed
-// (docs/performance.md, "Inlining"). Inlining does not change a result: no contraction (above) and
-// no excess precision, so the same expression rounds the same way inlined or called.
+// (docs/performance.md, "Every helper function inlined"). Inlining does not change a result: no
+// contraction (above) and no excess precision, so the same expression rounds the same way inlined
+// or called.
 #define INLINE inline __attribute__((always_inline))
 
 #if TALUS_DOUBLE
