@@ -393,12 +393,14 @@ def main():
                 P("")
         out["ritter_ratio"] = ratios
 
-    sp = os.path.join(work, "steep_plane.md")
-    if os.path.exists(sp):
-        P("## Diagnostic: thin sheet on a steep plane")
-        P("")
-        lines.extend(open(sp).read().rstrip("\n").split("\n"))
-        P("")
+    for name, title in (("steep_plane.md", "Diagnostic: thin sheet on a steep plane"),
+                        ("rough_slope.md", "Grid study: water sheet on a rough steep slope")):
+        path = os.path.join(work, name)
+        if os.path.exists(path):
+            P("## " + title)
+            P("")
+            lines.extend(open(path).read().rstrip("\n").split("\n"))
+            P("")
     text = "\n".join(lines) + "\n"
     sys.stdout.write(text)
     open(os.path.join(work, "results.md"), "w").write(text)

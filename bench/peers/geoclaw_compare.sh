@@ -5,8 +5,9 @@
 # usage: bash bench/peers/geoclaw_compare.sh [--quick] [--fresh] [--only STEPS]
 #   --quick        each timing case once, no 2.5 m grid
 #   --fresh        forget the runs recorded in $PEERS_WORK/runs.jsonl (otherwise a rerun resumes)
-#   --only STEPS   comma list of: setup,prepare,kot,grid,ritter,plane,report (default: all, in order;
-#                  plane = the steep-plane diagnostic, steep_plane.py, a few seconds)
+#   --only STEPS   comma list of: setup,prepare,kot,grid,ritter,plane,rough,report (default: all, in order;
+#                  plane = the steep-plane diagnostic, steep_plane.py, a few seconds; rough = the
+#                  rough-slope grid study, rough_slope.py, about 2 minutes)
 #
 # environment:
 #   PEERS_VENV   Python virtual environment (default /work/clawpack-venv)
@@ -26,7 +27,7 @@ CLAWV="${CLAWPACK_VERSION:-5.14.0}"
 FFLAGS_GC="${PEERS_FFLAGS:--O2 -fopenmp}"
 QUICK=0
 FRESH=0
-ONLY="setup,prepare,kot,grid,ritter,plane,report"
+ONLY="setup,prepare,kot,grid,ritter,plane,rough,report"
 
 while [ $# -gt 0 ]; do
   case "$1" in
@@ -149,4 +150,5 @@ if want kot;    then log "kot_dambreak 5 m ($REPS rounds)"; "$PY" "$HERE/peers_r
 if want grid;   then log "grid study ($LEVELS m)"; "$PY" "$HERE/peers_run.py" grid "$WORK" --reps "$REPS" --levels "$LEVELS"; fi
 if want ritter; then log "Ritter (dx $RITTER_DX m)"; "$PY" "$HERE/peers_run.py" ritter "$WORK" --reps "$REPS" --dx "$RITTER_DX"; fi
 if want plane;  then log "steep-plane diagnostic"; "$PY" "$HERE/steep_plane.py" "$WORK" > /dev/null; fi
+if want rough;  then log "rough-slope grid study"; "$PY" "$HERE/rough_slope.py" "$WORK" > /dev/null; fi
 if want report; then "$PY" "$HERE/compare_maps.py" "$WORK"; log "written $WORK/results.md"; fi

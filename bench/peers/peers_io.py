@@ -149,3 +149,18 @@ def geoclaw_timing(run_dir):
 
 def talus_summary(out_dir):
     return json.load(open(os.path.join(out_dir, "summary.json")))
+
+
+class MarkdownLog:
+    """Report lines, printed as they come and kept for a markdown file: log(text), log.save(path)."""
+
+    def __init__(self):
+        self.lines = []
+
+    def __call__(self, text):
+        print(text, flush=True)
+        self.lines.append(text)
+
+    def save(self, path):
+        with open(path, "w") as f:
+            f.write("\n".join(self.lines) + "\n")

@@ -78,8 +78,10 @@ CpuFlowReference::Faces CpuFlowReference::reconstruct(const State& s, int i, int
   const int di = dir == 0 ? 1 : 0, dj = 1 - di;
   const Prim c = prim(s, i, j, dir);
   // The surface with the limiter over a minmod bed (flow_common.cl, reconstruct_surface), the bed
-  // slope scaled by the largest theta in [0, 1] that keeps both face thicknesses h -+ (se - theta db)/2
-  // non-negative; zero slopes next to outside cells, in dry cells and where no theta does.
+  // slope moved from db towards 0 just enough that both face thicknesses h -+ (se - slope)/2 lie
+  // within [hmin, hmax] of the cell and its neighbours; where no such slope exists but the unflattened faces
+  // are positive (|se - db| <= 2h), the bed keeps db and the thickness slope se - db is clipped to
+  // that range; zero slopes next to outside cells, in dry cells and otherwise.
   double dh = 0, de = 0, dun = 0, dut = 0;
   const bool bothInside = inside(i - di, j - dj) && inside(i + di, j + dj);
   if (bothInside && c.h > 0.0) {
@@ -87,20 +89,23 @@ CpuFlowReference::Faces CpuFlowReference::reconstruct(const State& s, int i, int
     const double a = (c.eta - c.h) - (m.eta - m.h), b = (p.eta - p.h) - (c.eta - c.h);
     const double db = a * b <= 0.0 ? 0.0 : (std::fabs(a) < std::fabs(b) ? a : b);
     const double se = limiter(c.eta - m.eta, p.eta - c.eta);
-    // theta db in [se - 2h, se + 2h]: an interval of theta (all of R when db = 0 and |se| <= 2h).
-    double tLo = 0.0, tHi = 1.0;
-    if (db > 0.0) {
-      tLo = std::max(tLo, (se - 2.0 * c.h) / db);
-      tHi = std::min(tHi, (se + 2.0 * c.h) / db);
-    } else if (db < 0.0) {
-      tLo = std::max(tLo, (se + 2.0 * c.h) / db);
-      tHi = std::min(tHi, (se - 2.0 * c.h) / db);
-    } else if (std::fabs(se) > 2.0 * c.h) {
-      tHi = -1.0;
-    }
-    if (tLo <= tHi) {
-      dh = se - tHi * db;
+    const double hmax = std::max({m.h, c.h, p.h}), hmin = std::min({m.h, c.h, p.h});
+    const double room = 2.0 * std::min(hmax - c.h, c.h - hmin);  // |thickness slope| <= room
+    // The bed slope nearest db in [min(0, db), max(0, db)] with |se - slope| <= room, if any.
+    const double lo = std::max(se - room, std::min(0.0, db)), hi = std::min(se + room, std::max(0.0, db));
+    const bool flattenable = lo <= hi;
+    const double near = flattenable ? std::clamp(db, lo, hi) : db;
+    bool sloped = true;
+    if (flattenable) {
+      dh = se - near;
       de = se;
+    } else if (std::fabs(se - db) <= 2.0 * c.h) {  // positive faces, but outside [hmin, hmax]
+      dh = std::clamp(se - db, -room, room);
+      de = db + dh;
+    } else {
+      sloped = false;
+    }
+    if (sloped) {
       dun = limiter(c.un - m.un, p.un - c.un);
       dut = limiter(c.ut - m.ut, p.ut - c.ut);
     }
