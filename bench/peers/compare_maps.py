@@ -394,7 +394,8 @@ def main():
         out["ritter_ratio"] = ratios
 
     for name, title in (("steep_plane.md", "Diagnostic: thin sheet on a steep plane"),
-                        ("rough_slope.md", "Grid study: water sheet on a rough steep slope")):
+                        ("rough_slope.md", "Grid study: water sheet on a rough steep slope"),
+                        ("roll_waves.md", "Roll waves on a steep plane: crest depths against the cell size")):
         path = os.path.join(work, name)
         if os.path.exists(path):
             P("## " + title)

@@ -5,9 +5,10 @@
 # usage: bash bench/peers/geoclaw_compare.sh [--quick] [--fresh] [--only STEPS]
 #   --quick        each timing case once, no 2.5 m grid
 #   --fresh        forget the runs recorded in $PEERS_WORK/runs.jsonl (otherwise a rerun resumes)
-#   --only STEPS   comma list of: setup,prepare,kot,grid,ritter,plane,rough,report (default: all, in order;
-#                  plane = the steep-plane diagnostic, steep_plane.py, a few seconds; rough = the
-#                  rough-slope grid study, rough_slope.py, about 2 minutes)
+#   --only STEPS   comma list of: setup,prepare,kot,grid,ritter,plane,rough,roll,report (default: all, in
+#                  order; plane = the steep-plane diagnostic, steep_plane.py, a few seconds; rough = the
+#                  rough-slope grid study, rough_slope.py, about 2 minutes; roll = roll waves on a steep
+#                  plane, roll_waves.py, about 2 minutes)
 #
 # environment:
 #   PEERS_VENV   Python virtual environment (default /work/clawpack-venv)
@@ -27,7 +28,7 @@ CLAWV="${CLAWPACK_VERSION:-5.14.0}"
 FFLAGS_GC="${PEERS_FFLAGS:--O2 -fopenmp}"
 QUICK=0
 FRESH=0
-ONLY="setup,prepare,kot,grid,ritter,plane,rough,report"
+ONLY="setup,prepare,kot,grid,ritter,plane,rough,roll,report"
 
 while [ $# -gt 0 ]; do
   case "$1" in
@@ -151,4 +152,5 @@ if want grid;   then log "grid study ($LEVELS m)"; "$PY" "$HERE/peers_run.py" gr
 if want ritter; then log "Ritter (dx $RITTER_DX m)"; "$PY" "$HERE/peers_run.py" ritter "$WORK" --reps "$REPS" --dx "$RITTER_DX"; fi
 if want plane;  then log "steep-plane diagnostic"; "$PY" "$HERE/steep_plane.py" "$WORK" > /dev/null; fi
 if want rough;  then log "rough-slope grid study"; "$PY" "$HERE/rough_slope.py" "$WORK" > /dev/null; fi
+if want roll;   then log "roll waves on a steep plane"; "$PY" "$HERE/roll_waves.py" "$WORK" > /dev/null; fi
 if want report; then "$PY" "$HERE/compare_maps.py" "$WORK"; log "written $WORK/results.md"; fi

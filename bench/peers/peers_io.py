@@ -1,7 +1,11 @@
-"""Readers for GeoClaw's output (frames, aux, fgmax, step log) and Talus's output folder."""
+"""Readers for GeoClaw's output (frames, aux, fgmax, step log) and Talus's output folder, and a
+runner for a prepared single-level GeoClaw case."""
+import glob
 import json
 import os
 import re
+import shutil
+import subprocess
 
 import numpy as np
 
@@ -164,3 +168,16 @@ class MarkdownLog:
     def save(self, path):
         with open(path, "w") as f:
             f.write("\n".join(self.lines) + "\n")
+
+
+def run_geoclaw_case(case_dir, out_dir, nx, ny, dx, frame=1):
+    """Runs GEOCLAW_EXE (one OpenMP thread) on the *.data files of case_dir in a fresh out_dir and
+    returns read_frame's (q, t) of output frame `frame`."""
+    shutil.rmtree(out_dir, ignore_errors=True)
+    os.makedirs(out_dir)
+    for f in glob.glob(os.path.join(case_dir, "*.data")):
+        shutil.copy(f, out_dir)
+    with open(os.path.join(out_dir, "run.log"), "w") as log:
+        subprocess.run([os.environ["GEOCLAW_EXE"]], cwd=out_dir, check=True, stdout=log, stderr=subprocess.STDOUT,
+                       env=dict(os.environ, OMP_NUM_THREADS="1"))
+    return read_frame(out_dir, frame, nx, ny, dx)

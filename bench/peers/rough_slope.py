@@ -14,9 +14,7 @@ slope, and the distance sum|h - H| / sum H of each map from the same code's 1.25
 Writes WORK/rough_slope.md.
 """
 import argparse
-import glob
 import os
-import shutil
 import subprocess
 import sys
 
@@ -74,15 +72,7 @@ def run_talus(d, limiter):
 
 
 def run_geoclaw(d, nx, ny, dx):
-    rdir = os.path.join(d, "geoclaw_out")
-    shutil.rmtree(rdir, ignore_errors=True)
-    os.makedirs(rdir)
-    for f in glob.glob(os.path.join(d, "geoclaw_case", "*.data")):
-        shutil.copy(f, rdir)
-    with open(os.path.join(rdir, "run.log"), "w") as log:
-        subprocess.run([os.environ["GEOCLAW_EXE"]], cwd=rdir, check=True, stdout=log, stderr=subprocess.STDOUT,
-                       env=dict(os.environ, OMP_NUM_THREADS="1"))
-    q, _ = peers_io.read_frame(rdir, 1, nx, ny, dx)
+    q, _ = peers_io.run_geoclaw_case(os.path.join(d, "geoclaw_case"), os.path.join(d, "geoclaw_out"), nx, ny, dx)
     return np.nan_to_num(q[0])
 
 

@@ -13,10 +13,8 @@ This is the regime of kot_dambreak's thin tail on 30-45 degree slopes with 5 m c
 falls tan(angle) dx (3.5 m at 35 degrees) per cell, far more than the depth.
 """
 import argparse
-import glob
 import math
 import os
-import shutil
 import subprocess
 import sys
 
@@ -82,15 +80,7 @@ def main():
                                 out_format="ascii", fgmax=False)
             finally:
                 sys.stdout = old
-        rdir = os.path.join(d, "geoclaw_out")
-        shutil.rmtree(rdir, ignore_errors=True)
-        os.makedirs(rdir)
-        for f in glob.glob(os.path.join(cdir, "*.data")):
-            shutil.copy(f, rdir)
-        with open(os.path.join(rdir, "run.log"), "w") as log:
-            subprocess.run([os.environ["GEOCLAW_EXE"]], cwd=rdir, check=True, stdout=log, stderr=subprocess.STDOUT,
-                           env=dict(os.environ, OMP_NUM_THREADS="1"))
-        q, t = peers_io.read_frame(rdir, 1, nx, ny, dx)
+        q, t = peers_io.run_geoclaw_case(cdir, os.path.join(d, "geoclaw_out"), nx, ny, dx)
         hg = q[0]
         ug = np.hypot(q[1], q[2]) / np.maximum(q[0], 1e-12)
         sel = slice(int(0.55 * nx), int(0.75 * nx))
