@@ -22,6 +22,7 @@ GeoClaw), with eta = z + h on wet cells and eta = z - 10 m on dry ones, so h = m
 Talus water thickness to round-off.
 """
 import argparse
+import contextlib
 import json
 import math
 import os
@@ -404,6 +405,13 @@ def geoclaw_case(case_dir, z, h, dx, tfinal, nout, bc, manning, wall_height, out
 # ----------------------------------------------------------------------------------------------
 # Sub-commands
 # ----------------------------------------------------------------------------------------------
+def geoclaw_case_quiet(case_dir, z, h, dx, **kw):
+    """geoclaw_case with clawpack's own prints (fgmax_tools) kept off stdout, so a script's table
+    stays clean."""
+    with open(os.devnull, "w") as devnull, contextlib.redirect_stdout(devnull):
+        geoclaw_case(case_dir, z, h, dx, **kw)
+
+
 def cmd_grids(args):
     repo, work = os.path.abspath(args.repo), os.path.abspath(args.work)
     src = os.path.join(repo, "data", "kot_dambreak")

@@ -181,3 +181,11 @@ def run_geoclaw_case(case_dir, out_dir, nx, ny, dx, frame=1):
         subprocess.run([os.environ["GEOCLAW_EXE"]], cwd=out_dir, check=True, stdout=log, stderr=subprocess.STDOUT,
                        env=dict(os.environ, OMP_NUM_THREADS="1"))
     return read_frame(out_dir, frame, nx, ny, dx)
+
+
+def run_talus(runfile, out_dir, sets=()):
+    """Runs TALUS_BIN (PoCL with one compute unit) on `runfile` into out_dir with --set options."""
+    cmd = [os.environ.get("TALUS_BIN", "talus"), "run", runfile, "--out", out_dir, "--overwrite", "--quiet"]
+    for kv in sets:
+        cmd += ["--set", kv]
+    subprocess.run(cmd, check=True, env=dict(os.environ, POCL_MAX_PTHREAD_COUNT="1"))

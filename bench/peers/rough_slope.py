@@ -15,7 +15,6 @@ Writes WORK/rough_slope.md.
 """
 import argparse
 import os
-import subprocess
 import sys
 
 import numpy as np
@@ -52,22 +51,15 @@ def build(work, amp, t_end):
         with open(os.path.join(d, "talus.run"), "w") as fo:
             fo.write(gc.talus_run_text(0.05, t_end, "double", "open"))
         z = gc.read_raster(os.path.join(d, "dem.tif")).values
-        with open(os.devnull, "w") as devnull:  # fgmax_tools prints; keep stdout to the table
-            old, sys.stdout = sys.stdout, devnull
-            try:
-                gc.geoclaw_case(os.path.join(d, "geoclaw_case"), z, h, dem.dx, tfinal=t_end, nout=1, bc="extrap",
-                                manning=0.05, wall_height=0.0, out_format="binary64", fgmax=False)
-            finally:
-                sys.stdout = old
+        gc.geoclaw_case_quiet(os.path.join(d, "geoclaw_case"), z, h, dem.dx, tfinal=t_end, nout=1, bc="extrap",
+                              manning=0.05, wall_height=0.0, out_format="binary64", fgmax=False)
         dirs[name] = (d, f, nx, ny, dem.dx)
     return dirs
 
 
 def run_talus(d, limiter):
     out = os.path.join(d, "talus_" + limiter)
-    env = dict(os.environ, POCL_MAX_PTHREAD_COUNT="1")
-    subprocess.run([os.environ.get("TALUS_BIN", "talus"), "run", os.path.join(d, "talus.run"), "--out", out,
-                    "--overwrite", "--quiet", "--set", "Limiter=" + limiter], check=True, env=env)
+    peers_io.run_talus(os.path.join(d, "talus.run"), out, ["Limiter=" + limiter])
     return np.nan_to_num(gc.read_raster(os.path.join(out, "hffinal.tif")).values)
 
 

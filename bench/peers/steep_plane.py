@@ -15,7 +15,6 @@ falls tan(angle) dx (3.5 m at 35 degrees) per cell, far more than the depth.
 import argparse
 import math
 import os
-import subprocess
 import sys
 
 import numpy as np
@@ -65,21 +64,13 @@ def main():
         # Talus: walls on the sides are not separately selectable from the open ends, so the
         # 4-cell strip has open sides too; the flow is along x, so nothing leaves sideways.
         out = os.path.join(d, "talus_out")
-        env = dict(os.environ, POCL_MAX_PTHREAD_COUNT="1")
-        subprocess.run([os.environ.get("TALUS_BIN", "talus"), "run", os.path.join(d, "talus.run"), "--out", out,
-                        "--overwrite", "--quiet"], check=True, env=env)
+        peers_io.run_talus(os.path.join(d, "talus.run"), out)
         ht = gc.read_raster(os.path.join(out, "hffinal.tif")).values
         ut = gc.read_raster(os.path.join(out, "vffinal.tif")).values
         # GeoClaw
         cdir = os.path.join(d, "geoclaw_case")
-        with open(os.devnull, "w") as devnull:  # fgmax_tools prints; keep stdout to the table
-            old = sys.stdout
-            sys.stdout = devnull
-            try:
-                gc.geoclaw_case(cdir, z, h, dx, tfinal=a.t, nout=1, bc="extrap", manning=a.n, wall_height=0.0,
-                                out_format="ascii", fgmax=False)
-            finally:
-                sys.stdout = old
+        gc.geoclaw_case_quiet(cdir, z, h, dx, tfinal=a.t, nout=1, bc="extrap", manning=a.n, wall_height=0.0,
+                              out_format="ascii", fgmax=False)
         q, t = peers_io.run_geoclaw_case(cdir, os.path.join(d, "geoclaw_out"), nx, ny, dx)
         hg = q[0]
         ug = np.hypot(q[1], q[2]) / np.maximum(q[0], 1e-12)
