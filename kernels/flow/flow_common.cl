@@ -193,14 +193,15 @@ INLINE CellFaces reconstruct_surface(Prim m, int m_in, Prim c, Prim pl, int p_in
   const real bound = (real)2 * fmin(fmax(fmax(m.h, pl.h), c.h) - c.h, c.h - fmin(fmin(m.h, pl.h), c.h));
   const real lo = fmax(se - bound, fmin((real)0, sb_dem));
   const real hi = fmin(se + bound, fmax((real)0, sb_dem));
-  if (!(lo <= hi)) {
-    // Cases 2 and 3 of the comment above.
-    if (!(fabs(se - sb_dem) <= (real)2 * c.h)) return f;
-    const real sh = clamp(se - sb_dem, -bound, bound);
-    return faces_of(c, sh, sb_dem + sh, limited_slope(c.un - m.un, pl.un - c.un), limited_slope(c.ut - m.ut, pl.ut - c.ut));
+  const int flattenable = lo <= hi;                                     // case 1
+  if (!flattenable && !(fabs(se - sb_dem) <= (real)2 * c.h)) return f;  // case 3
+  const real su = limited_slope(c.un - m.un, pl.un - c.un), sv = limited_slope(c.ut - m.ut, pl.ut - c.ut);
+  if (flattenable) {
+    const real sb = clamp(sb_dem, lo, hi);
+    return faces_of(c, se - sb, se, su, sv);
   }
-  const real sb = clamp(sb_dem, lo, hi);
-  return faces_of(c, se - sb, se, limited_slope(c.un - m.un, pl.un - c.un), limited_slope(c.ut - m.ut, pl.ut - c.ut));
+  const real sh = clamp(se - sb_dem, -bound, bound);  // case 2
+  return faces_of(c, sh, sb_dem + sh, su, sv);
 }
 
 #endif

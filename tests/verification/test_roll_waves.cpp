@@ -32,9 +32,8 @@
 #include <vector>
 
 #include "core/Constants.hpp"
-#include "flow/FlowSolver.hpp"
-#include "support/DebrisScene.hpp"
-#include "support/TestDevice.hpp"
+#include "flow/FlowSettings.hpp"
+#include "support/FlowScene.hpp"
 
 namespace fl = talus::flow;
 using cplx = std::complex<double>;
@@ -45,16 +44,24 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr double kSlope = 0.25, kH0 = 1.0, kN = 0.05, kLambda = 100.0, kEps = 1e-3, kLength = 800.0;
 constexpr double kEnd = 20.0, kWindow0 = 400.0;
 
-double baseU() { return std::sqrt(kSlope) * std::pow(kH0, 2.0 / 3.0) / kN; }
+/// Manning's uniform velocity on a slope for depth h0.
+double uniformU(double slope) { return std::sqrt(slope) * std::pow(kH0, 2.0 / 3.0) / kN; }
+double baseU() { return uniformU(kSlope); }
 
-/// sigma of the growing mode (the root of the dispersion relation with the larger real part).
-cplx growingSigma() {
-  const double g = talus::kGravity, u0 = baseU(), k = 2 * kPi / kLambda;
-  const double a = 2 * g * kSlope / u0, b = 4.0 / 3.0 * g * kSlope;
+/// The root s = sigma + i k u0 of s^2 + a s + k^2 g h0 + i k b = 0 with the larger real part (the
+/// growing mode) for uniform flow of depth kH0 on `slope` at wavenumber k.
+cplx growingRoot(double slope, double k) {
+  const double g = talus::kGravity, u0 = uniformU(slope);
+  const double a = 2 * g * slope / u0, b = 4.0 / 3.0 * g * slope;
   const cplx disc = std::sqrt(cplx(a * a - 4 * k * k * g * kH0, -4 * k * b));
   const cplx s1 = 0.5 * (-a + disc), s2 = 0.5 * (-a - disc);
-  const cplx s = s1.real() > s2.real() ? s1 : s2;
-  return s - cplx(0, k * u0);
+  return s1.real() > s2.real() ? s1 : s2;
+}
+
+/// sigma of the growing mode of the test's flow.
+cplx growingSigma() {
+  const double k = 2 * kPi / kLambda;
+  return growingRoot(kSlope, k) - cplx(0, k * baseU());
 }
 
 struct Growth {
@@ -80,31 +87,22 @@ Growth runMode(fl::Limiter limiter, int cellsPerWave) {
   const cplx sigma = growingSigma(), s = sigma + cplx(0, k * u0);
   const cplx uHat = cplx(0, 1) * s * kEps / (k * kH0);  // eigenvector: u' = i s h' / (k h0)
   const talus::Grid grid = talus::Grid::make(nx, 1, dx);
-  fl::FlowInput in;
-  in.mask.assign(nx, 1);
-  in.bed.resize(nx);
-  in.manning.assign(nx, kN);
-  in.h.resize(nx);
-  in.qx.resize(nx);
-  in.qy.assign(nx, 0.0);
-  for (int i = 0; i < nx; ++i) {
-    // Cell averages of the mode (the average of cos over a cell is sinc(k dx / 2) times its centre value).
-    const double x = (i + 0.5) * dx, avg = std::sin(k * dx / 2) / (k * dx / 2);
-    const cplx e = std::exp(cplx(0, k * x)) * avg;
-    const double h = kH0 + kEps * e.real(), u = u0 + (uHat * e).real();
-    in.bed[i] = -kSlope * x;
-    in.h[i] = h;
-    in.qx[i] = h * u;  // second order in the amplitude: 1e-6 of the mode
-  }
+  // Cell averages of the mode (the average of cos over a cell is sinc(k dx / 2) times its centre value).
+  const double avg = std::sin(k * dx / 2) / (k * dx / 2);
+  auto mode = [&](double x) { return std::exp(cplx(0, k * x)) * avg; };
+  auto depth = [&](double x, double) { return kH0 + kEps * mode(x).real(); };
+  // q = h u: second order in the amplitude, 1e-6 of the mode.
+  auto discharge = [&](double x, double y) { return depth(x, y) * (u0 + (uHat * mode(x)).real()); };
+  const fl::FlowInput in =
+      talus::test::makeInput(grid, [](double x, double) { return -kSlope * x; }, depth, discharge,
+                             [](double, double) { return 0.0; }, kN);
   fl::FlowSettings st;
   st.slopeCorrection = false;
   st.edge = fl::Boundary::Open;
   st.limiter = limiter;
-  fl::FlowSolver solver(talus::test::testContext(talus::compute::Precision::Double), grid, st);
-  solver.setInput(in);
-  const cplx a0 = coefficient(solver.h(), dx, kWindow0, kLength);
-  talus::test::advance(solver, talus::test::RunLimits::until(kEnd));
-  const cplx a1 = coefficient(solver.h(), dx, kWindow0, kLength);
+  const cplx a0 = coefficient(in.h, dx, kWindow0, kLength);
+  const talus::test::FlowRun run = talus::test::runFlow(grid, in, st, talus::test::RunLimits::until(kEnd));
+  const cplx a1 = coefficient(run.h, dx, kWindow0, kLength);
   Growth g;
   g.amplification = std::abs(a1) / std::abs(a0);
   // The phase of a ~ exp(i (k x - omega t)) falls by omega t (mod 2 pi; the exact fall is near
@@ -132,9 +130,7 @@ TEST(RollWaves, DispersionRelationIsUnstableAboveFroudeThreeHalves) {
   const double g = talus::kGravity, k = 2 * kPi / kLambda;
   for (double froude : {1.4, 1.6}) {
     const double u0 = froude * std::sqrt(g * kH0), slope = std::pow(u0 * kN / std::pow(kH0, 2.0 / 3.0), 2);
-    const double a = 2 * g * slope / u0, b = 4.0 / 3.0 * g * slope;
-    const cplx disc = std::sqrt(cplx(a * a - 4 * k * k * g * kH0, -4 * k * b));
-    const double growth = std::max((0.5 * (-a + disc)).real(), (0.5 * (-a - disc)).real());
+    const double growth = growingRoot(slope, k).real();
     if (froude < 1.5) EXPECT_LT(growth, 0.0) << "F = " << froude;
     else EXPECT_GT(growth, 0.0) << "F = " << froude;
   }
