@@ -1,0 +1,77 @@
+// The state that water moving towards a cell face brings to the face bed z* of the hydrostatic
+// reconstruction (riemann.cl, hydrostatic_face) when z* lies above its own face bed: the rise is
+// climbed with the energy of the approach, as a resolved rise would be, instead of being cut off at
+// the still-water level.
+//
+// Audusse et al. (2004) re-measure the side's column from z* at rest: h* = e - z*, velocity kept.
+// That is exact for a lake at rest but not for moving water: a supercritical sheet of depth h
+// meeting a cell-scale rise of height dz passes only (h - dz) u of its discharge h u and is stopped
+// altogether by a rise higher than its depth, although its head h + u^2 / (2 g) carries it over;
+// the water piles up in front of every step of a coarse DEM (measured on data/kot_dambreak: flows
+// held in gullies that a 1.25 m grid lets spill over their banks, docs/numerics.md). Here the side
+// keeps its discharge q = h u and its total head (Bernoulli: steady frictionless flow over a step,
+// the energy-conserving reconstruction of the moving-water well-balanced schemes of Noelle, Xing &
+// Shu 2007, J. Comput. Phys. 226, sec. 3): the depth h' at z* solves
+//   h' + q^2 / (2 g h'^2) = E = h + u^2 / (2 g) - (z* - z)
+// on the side's own branch (the subcritical root >= h_c for Froude < 1, the supercritical one <= h_c
+// above), h_c = (q^2 / g)^(1/3). Where E is below the critical energy 3/2 h_c the rise chokes the
+// flow: the face takes the critical state h' = 2/3 E, u' = sqrt(g h') (the largest discharge the
+// head can pass), and E <= 0 blocks the face (h' = 0).
+//
+// Only the speed towards the face counts (w = max(0, u_n) on the minus side, max(0, -u_n) on the
+// plus side); water at rest or moving away is re-measured as Audusse's, so a lake at rest is kept
+// bit for bit and nothing is pushed off a wall it moves away from. (With the full u_n^2 a thin fast
+// film moving away from a rise was pushed by it, and the stress suite's energy bound failed.)
+#ifndef TALUS_FLOW_BERNOULLI_FACE_CL
+#define TALUS_FLOW_BERNOULLI_FACE_CL
+#include "flow/flow_common.cl"
+
+/// Normal speed of a side towards the face: `towards` is +1 for the minus side, -1 for the plus side.
+INLINE real approach_speed(real un, real towards) { return fmax((real)0, towards * un); }
+
+/// Free surface plus the kinetic head of the approach, e + w^2 / (2 g).
+INLINE real approach_head(real e, real un, real towards, real g) {
+  const real w = approach_speed(un, towards);
+  return e + w * w / ((real)2 * g);
+}
+
+/// (h', u') at the face bed zs >= z = e - h for a side (h, e, un) approaching with speed w > 0
+/// (see above). At w = 0 it is Audusse's (e - zs, un).
+INLINE real2 bernoulli_state(real h, real e, real un, real towards, real g, real zs) {
+  if (!(approach_speed(un, towards) > (real)0) || !(h > (real)0)) return (real2)(fmax((real)0, e - zs), un);
+  const real es = approach_head(e, un, towards, g) - zs;  // specific energy left at z*
+  if (!(es > (real)0)) return (real2)((real)0, (real)0);
+  const real q2 = h * h * un * un;
+  const real hc = cbrt(q2 / g);
+  if (es <= (real)1.5 * hc) {  // choked: the critical state that the head supports
+    const real hs = es * (real)(2.0 / 3.0);
+    return (real2)(hs, copysign(sqrt(g * hs), un));
+  }
+  // Newton from the side's own depth (a root of the same equation with the energy before the rise):
+  // f(x) = x + q^2 / (2 g x^2) - es is convex, so the iterates approach the root monotonically from
+  // h's side; they are kept on h's branch.
+  const int sub = un * un < g * h;
+  real x = h;
+  for (int it = 0; it < 24; ++it) {
+    const real slope = (real)1 - q2 / (g * x * x * x);
+    if (slope == (real)0) break;
+    const real next = x - (x + q2 / ((real)2 * g * x * x) - es) / slope;
+    const real kept = sub ? fmax(next, hc) : fmin(next, hc);
+    const int done = fabs(kept - x) <= (real)4 * REAL_EPS * x;
+    x = kept;
+    if (done) break;
+  }
+  return (real2)(x, h * un / x);
+}
+
+/// Bed-jump momentum term of a side re-measured from z*, without the factor g: the difference of its
+/// normal-momentum flux (pressure and advection) and that of its face state, so that the flux at z*
+/// plus this term is the side's own flux (a steady flow over the step stays steady). At rest, and
+/// for water moving away from the face, Audusse's (h^2 - h'^2) / 2.
+INLINE real bernoulli_jump_term(real h, real un, real2 face, real towards, real g) {
+  real c = (real)0.5 * (h * h - face.x * face.x);
+  if (approach_speed(un, towards) > (real)0) c += (h * un * un - face.x * face.y * face.y) / g;
+  return c;
+}
+
+#endif
