@@ -26,37 +26,40 @@
 #define TALUS_FLOW_BERNOULLI_FACE_CL
 #include "flow/flow_common.cl"
 
-/// Normal speed of a side towards the face: `towards` is +1 for the minus side, -1 for the plus side.
-INLINE real approach_speed(real un, real towards) { return fmax((real)0, towards * un); }
+/// Normal speed of a side towards the face when it arrives supercritically (w^2 > g h), else 0:
+/// `towards` is +1 for the minus side, -1 for the plus side.
+INLINE real approach_speed(real h, real un, real towards, real g) {
+  const real w = fmax((real)0, towards * un);
+  return w * w > g * h ? w : (real)0;
+}
 
-/// Free surface plus the kinetic head of the approach, e + w^2 / (2 g).
-INLINE real approach_head(real e, real un, real towards, real g) {
-  const real w = approach_speed(un, towards);
+/// Free surface plus the kinetic head of a supercritical approach, e + w^2 / (2 g).
+INLINE real approach_head(real h, real e, real un, real towards, real g) {
+  const real w = approach_speed(h, un, towards, g);
   return e + w * w / ((real)2 * g);
 }
 
-/// (h', u') at the face bed zs >= z = e - h for a side (h, e, un) approaching with speed w > 0
-/// (see above). At w = 0 it is Audusse's (e - zs, un).
+/// (h', u') at the face bed zs >= z = e - h for a side (h, e, un) arriving supercritically (see
+/// above); otherwise Audusse's (e - zs, un).
 INLINE real2 bernoulli_state(real h, real e, real un, real towards, real g, real zs) {
-  if (!(approach_speed(un, towards) > (real)0) || !(h > (real)0)) return (real2)(fmax((real)0, e - zs), un);
-  const real es = approach_head(e, un, towards, g) - zs;  // specific energy left at z*
+  if (!(approach_speed(h, un, towards, g) > (real)0) || !(h > (real)0)) return (real2)(fmax((real)0, e - zs), un);
+  const real es = approach_head(h, e, un, towards, g) - zs;  // specific energy left at z*
   if (!(es > (real)0)) return (real2)((real)0, (real)0);
   const real q2 = h * h * un * un;
   const real hc = cbrt(q2 / g);
-  if (es <= (real)1.5 * hc) {  // choked: the critical state that the head supports
+  if (es <= (real)1.5 * hc) {  // choked: the critical depth that the head supports
     const real hs = es * (real)(2.0 / 3.0);
-    return (real2)(hs, copysign(sqrt(g * hs), un));
+    return (real2)(hs, copysign(fmin(fabs(un), sqrt(g * hs)), un));
   }
-  // Newton from the side's own depth (a root of the same equation with the energy before the rise):
-  // f(x) = x + q^2 / (2 g x^2) - es is convex, so the iterates approach the root monotonically from
-  // h's side; they are kept on h's branch.
-  const int sub = un * un < g * h;
+  // Newton from the side's own depth (the supercritical root of the same equation with the energy
+  // before the rise): f(x) = x + q^2 / (2 g x^2) - es is convex and decreasing below h_c, so the
+  // iterates rise monotonically to the root, which lies between h and h_c.
   real x = h;
   for (int it = 0; it < 24; ++it) {
     const real slope = (real)1 - q2 / (g * x * x * x);
-    if (slope == (real)0) break;
+    if (!(slope < (real)0)) break;
     const real next = x - (x + q2 / ((real)2 * g * x * x) - es) / slope;
-    const real kept = sub ? fmax(next, hc) : fmin(next, hc);
+    const real kept = fmin(next, hc);
     const int done = fabs(kept - x) <= (real)4 * REAL_EPS * x;
     x = kept;
     if (done) break;
@@ -70,7 +73,7 @@ INLINE real2 bernoulli_state(real h, real e, real un, real towards, real g, real
 /// for water moving away from the face, Audusse's (h^2 - h'^2) / 2.
 INLINE real bernoulli_jump_term(real h, real un, real2 face, real towards, real g) {
   real c = (real)0.5 * (h * h - face.x * face.x);
-  if (approach_speed(un, towards) > (real)0) c += (h * un * un - face.x * face.y * face.y) / g;
+  if (approach_speed(h, un, towards, g) > (real)0) c += (h * un * un - face.x * face.y * face.y) / g;
   return c;
 }
 

@@ -131,7 +131,7 @@ INLINE HydrostaticFace hydrostatic_face(Side m, Side p) {
   HydrostaticFace f;
   f.zm = m.e - m.h;
   f.zp = p.e - p.h;
-  f.bs = fmin(fmax(f.zm, f.zp), fmin(approach_head(m.e, m.un, (real)1, m.g), approach_head(p.e, p.un, (real)-1, p.g)));
+  f.bs = fmin(fmax(f.zm, f.zp), fmin(approach_head(m.h, m.e, m.un, (real)1, m.g), approach_head(p.h, p.e, p.un, (real)-1, p.g)));
   f.sm = f.bs >= f.zm ? bernoulli_state(m.h, m.e, m.un, (real)1, m.g, f.bs) : (real2)(m.h, m.un);
   f.sp = f.bs >= f.zp ? bernoulli_state(p.h, p.e, p.un, (real)-1, p.g, f.bs) : (real2)(p.h, p.un);
   f.r = riemann_flux(f.sm.x, f.sm.y, m.ut, f.sp.x, f.sp.y, p.ut, fmax(m.g, p.g));

@@ -19,19 +19,26 @@ using flow::Limiter;
 
 namespace {
 
-/// A side's (thickness, normal velocity) at the face bed zs >= its own bed, approaching the face
-/// with speed w = max(0, towards * un) (kernels/flow/bernoulli_face.cl): at w = 0 Audusse's
-/// (eta - zs, un); else the depth with the same discharge and total head h + w^2 / (2 g) - (zs - z)
-/// on the side's branch (Bernoulli), solved here by bisection between the side's depth and the
-/// critical depth (an independent root finder from the kernel's Newton iteration), or the
+/// Speed of a side towards the face (towards = +1 for the minus side, -1 for the plus side) where it
+/// arrives supercritically, else 0.
+double approachSpeed(double h, double un, double towards, double g) {
+  const double w = std::max(0.0, towards * un);
+  return w * w > g * h ? w : 0.0;
+}
+
+/// A side's (thickness, normal velocity) at the face bed zs >= its own bed
+/// (kernels/flow/bernoulli_face.cl): Audusse's (eta - zs, un) unless it arrives supercritically
+/// with speed w; then the depth with the same discharge and total head h + w^2 / (2 g) - (zs - z)
+/// on the supercritical branch (Bernoulli), solved here by bisection between the side's depth and
+/// the critical depth (an independent root finder from the kernel's Newton iteration), or the
 /// critical state 2/3 E where the rise chokes the flow.
 std::pair<double, double> bernoulliState(double h, double eta, double un, double towards, double g, double zs) {
-  const double w = std::max(0.0, towards * un);
+  const double w = approachSpeed(h, un, towards, g);
   if (!(w > 0.0) || !(h > 0.0)) return {std::max(0.0, eta - zs), un};
   const double es = eta + w * w / (2.0 * g) - zs;
   if (!(es > 0.0)) return {0.0, 0.0};
   const double q2 = h * h * un * un, hc = std::cbrt(q2 / g);
-  if (es <= 1.5 * hc) return {2.0 * es / 3.0, std::copysign(std::sqrt(2.0 * g * es / 3.0), un)};
+  if (es <= 1.5 * hc) return {2.0 * es / 3.0, std::copysign(std::min(std::fabs(un), std::sqrt(2.0 * g * es / 3.0)), un)};
   // f(x) = x + q^2 / (2 g x^2) - es: f(h) = zs - z >= 0 and f(hc) = 3/2 hc - es < 0, so the root on
   // h's branch lies between h and hc.
   double a = h, b = hc;
@@ -41,14 +48,14 @@ std::pair<double, double> bernoulliState(double h, double eta, double un, double
     (f > 0.0 ? a : b) = mid;
   }
   const double x = 0.5 * (a + b);
-  return {x, h * un / x};
+  return {x, x > h ? h * un / x : un};  // the face never passes more than the side's discharge h u
 }
 
 /// Bed-jump term of a side re-measured from z* (riemann.cl, face_between): its momentum flux minus
-/// that of its face state, without g; Audusse's (h^2 - h*^2) / 2 for water not approaching.
+/// that of its face state, without g; Audusse's (h^2 - h*^2) / 2 unless it arrives supercritically.
 double bernoulliJump(double h, double un, std::pair<double, double> face, double towards, double g) {
   double c = 0.5 * (h * h - face.first * face.first);
-  if (towards * un > 0.0) c += (h * un * un - face.first * face.second * face.second) / g;
+  if (approachSpeed(h, un, towards, g) > 0.0) c += (h * un * un - face.first * face.second * face.second) / g;
   return c;
 }
 
@@ -254,7 +261,7 @@ CpuFlowReference::FaceFlux CpuFlowReference::faceFlux(const State& s, int i, int
   // takes the bed force of the drop, h (z* - z).
   auto solve = [&]() {
     const double zl = L.eta - L.h, zr = R.eta - R.h;
-    const double wl = std::max(0.0, L.un), wr = std::max(0.0, -R.un);
+    const double wl = approachSpeed(L.h, L.un, 1.0, L.g), wr = approachSpeed(R.h, R.un, -1.0, R.g);
     const double headL = L.eta + wl * wl / (2.0 * L.g), headR = R.eta + wr * wr / (2.0 * R.g);
     const double bedFace = std::min(std::max(zl, zr), std::min(headL, headR));
     const auto sl = bedFace >= zl ? bernoulliState(L.h, L.eta, L.un, 1.0, L.g, bedFace) : std::make_pair(L.h, L.un);
