@@ -88,7 +88,7 @@ typedef struct {
   real fqn;     // normal momentum flux without the pressure part
   real fqt;     // tangential momentum flux
   real p;       // HLL pressure flux P (the cell adds g_p * P)
-  real corr_m;  // bed-jump correction of the minus-side cell: (h^2 - h*^2) / 2 at a rise, h (z* - z) at a drop
+  real corr_m;  // bed-jump term of the minus-side cell (face_between, bernoulli_jump_term at a rise)
   real corr_p;  // same for the plus-side cell
 } Face;
 
@@ -131,7 +131,9 @@ INLINE HydrostaticFace hydrostatic_face(Side m, Side p) {
   HydrostaticFace f;
   f.zm = m.e - m.h;
   f.zp = p.e - p.h;
-  f.bs = fmin(fmax(f.zm, f.zp), fmin(approach_head(m.h, m.e, m.un, (real)1, m.g), approach_head(p.h, p.e, p.un, (real)-1, p.g)));
+  const real head_m = approach_head(m.h, m.e, m.un, (real)1, m.g);
+  const real head_p = approach_head(p.h, p.e, p.un, (real)-1, p.g);
+  f.bs = fmin(fmax(f.zm, f.zp), fmin(head_m, head_p));
   f.sm = f.bs >= f.zm ? bernoulli_state(m.h, m.e, m.un, (real)1, m.g, f.bs) : (real2)(m.h, m.un);
   f.sp = f.bs >= f.zp ? bernoulli_state(p.h, p.e, p.un, (real)-1, p.g, f.bs) : (real2)(p.h, p.un);
   f.r = riemann_flux(f.sm.x, f.sm.y, m.ut, f.sp.x, f.sp.y, p.ut, fmax(m.g, p.g));
