@@ -4,7 +4,8 @@
 //   (h u)_t + div(h u u) + g_p h grad h = -g_n h grad b.
 // From the MUSCL face values of the two cells beside the face: ghost states at boundaries, the
 // hydrostatic reconstruction of Audusse et al. (2004, SIAM J. Sci. Comput. 25, eq. 2.7-2.9) with the
-// subcell face bed of Chen & Noelle (2017) for well-balancing and positivity, and an HLL (Harten, Lax & van Leer 1983) or HLLC (Toro 2001,
+// subcell face bed of Chen & Noelle (2017) for well-balancing and positivity (moving water climbs a
+// rise with its head: flow/bernoulli_face.cl), and an HLL (Harten, Lax & van Leer 1983) or HLLC (Toro 2001,
 // "Shock-capturing methods for free-surface shallow flows", ch. 10) flux.
 //
 // The hydrostatic pressure part of the normal-momentum flux is returned without its factor g, so
@@ -12,6 +13,7 @@
 // where g_p varies from cell to cell.
 #ifndef TALUS_FLOW_RIEMANN_CL
 #define TALUS_FLOW_RIEMANN_CL
+#include "flow/bernoulli_face.cl"
 #include "flow/flow_common.cl"
 
 typedef struct {
@@ -86,7 +88,7 @@ typedef struct {
   real fqn;     // normal momentum flux without the pressure part
   real fqt;     // tangential momentum flux
   real p;       // HLL pressure flux P (the cell adds g_p * P)
-  real corr_m;  // bed-jump correction of the minus-side cell: (h^2 - h*^2) / 2 at a rise, h (z* - z) at a drop
+  real corr_m;  // bed-jump term of the minus-side cell (face_between, bernoulli_jump_term at a rise)
   real corr_p;  // same for the plus-side cell
 } Face;
 
@@ -113,13 +115,15 @@ INLINE void open_ghost(const Side* in, Side* gh, real s, real far) {
 
 /// The flux between two face states by the hydrostatic reconstruction with a subcell face bed (Chen
 /// & Noelle 2017, SIAM J. Numer. Anal. 55, eq. 3.4-3.9): the face bed is the higher of the two face
-/// beds, but never above the lower of the two free surfaces, z* = min(max(z_m, z_p), min(e_m, e_p)).
-/// A side whose face bed lies below z* meets a rise: the part of its column above z* reaches the
-/// face (Audusse's h* = e - z*, >= 0 because z* <= e). A side above z* (its neighbour's surface is
-/// lower than its own bed: a thin sheet on a steep coarse slope, water at a cliff edge) keeps its
-/// thickness.
+/// beds, but never above the lower of the two heads, z* = min(max(z_m, z_p), min(H_m, H_p)), where
+/// a side's head H is its free surface plus the kinetic head of its approach to the face (the free
+/// surface for water at rest or moving away; flow/bernoulli_face.cl). A side whose face bed lies
+/// below z* meets a rise and is re-measured from z*: at rest Audusse's h* = e - z*, approaching with
+/// its discharge and head kept (bernoulli_state). A side above z* (its neighbour's head is lower
+/// than its own bed: a thin sheet on a steep coarse slope, water at a cliff edge) keeps its state.
 typedef struct {
-  real zm, zp, bs, hm, hp;  // face beds, z*, and the thicknesses that reach the face
+  real zm, zp, bs;  // face beds and z*
+  real2 sm, sp;     // (thickness, normal velocity) of each side at the face
   FaceFlux r;
 } HydrostaticFace;
 
@@ -127,10 +131,12 @@ INLINE HydrostaticFace hydrostatic_face(Side m, Side p) {
   HydrostaticFace f;
   f.zm = m.e - m.h;
   f.zp = p.e - p.h;
-  f.bs = fmin(fmax(f.zm, f.zp), fmin(m.e, p.e));
-  f.hm = f.bs >= f.zm ? fmax((real)0, m.e - f.bs) : m.h;
-  f.hp = f.bs >= f.zp ? fmax((real)0, p.e - f.bs) : p.h;
-  f.r = riemann_flux(f.hm, m.un, m.ut, f.hp, p.un, p.ut, fmax(m.g, p.g));
+  const real head_m = approach_head(m.h, m.e, m.un, (real)1, m.g);
+  const real head_p = approach_head(p.h, p.e, p.un, (real)-1, p.g);
+  f.bs = fmin(fmax(f.zm, f.zp), fmin(head_m, head_p));
+  f.sm = f.bs >= f.zm ? bernoulli_state(m.h, m.e, m.un, (real)1, m.g, f.bs) : (real2)(m.h, m.un);
+  f.sp = f.bs >= f.zp ? bernoulli_state(p.h, p.e, p.un, (real)-1, p.g, f.bs) : (real2)(p.h, p.un);
+  f.r = riemann_flux(f.sm.x, f.sm.y, m.ut, f.sp.x, f.sp.y, p.ut, fmax(m.g, p.g));
   return f;
 }
 
@@ -183,19 +189,19 @@ INLINE Face face_between(int m_in, Side m, int p_in, Side p, int kind, real far)
     hf = hydrostatic_face(m, p);
   }
   const FaceFlux r = hf.r;
-  const real zm = hf.zm, zp = hf.zp, bs = hf.bs, hm = hf.hm, hp = hf.hp;
+  const real zm = hf.zm, zp = hf.zp, bs = hf.bs;
   f.fh = wall ? (real)0 : r.fh;
   f.fqn = r.fqn;
   f.fqt = wall ? (real)0 : r.fqt;
   f.p = r.p;
-  // The source of the bed jump between a side's face bed and z*, trapezoidal in Chen & Noelle's
-  // form (h + h*)/2 (z* - z): at a rise that is Audusse's (h^2 - h*^2)/2, written so (bitwise at
-  // rest); at a drop (h* = h) it is h (z* - z) < 0, the bed force of the fall to the neighbour's
-  // surface, which drives a sheet on a staircase by its true slope. Without it (Audusse's z* =
-  // max(z_m, z_p)) the face only passes a dam-break flux and water on slopes steeper than depth over
-  // cell size is held back by the grid.
-  f.corr_m = bs >= zm ? (real)0.5 * (m.h * m.h - hm * hm) : m.h * (bs - zm);
-  f.corr_p = bs >= zp ? (real)0.5 * (p.h * p.h - hp * hp) : p.h * (bs - zp);
+  // The source of the bed jump between a side's face bed and z*: at a rise the difference of the
+  // side's own momentum flux and that of its state at z* (bernoulli_jump_term; at rest Audusse's
+  // (h^2 - h*^2)/2, bitwise); at a drop (the side keeps its state) Chen & Noelle's h (z* - z) < 0,
+  // the bed force of the fall to the neighbour's head, which drives a sheet on a staircase by its
+  // true slope. Without it (Audusse's z* = max(z_m, z_p)) the face only passes a dam-break flux and
+  // water on slopes steeper than depth over cell size is held back by the grid.
+  f.corr_m = bs >= zm ? bernoulli_jump_term(m.h, m.un, hf.sm, (real)1, m.g) : m.h * (bs - zm);
+  f.corr_p = bs >= zp ? bernoulli_jump_term(p.h, p.un, hf.sp, (real)-1, p.g) : p.h * (bs - zp);
   return f;
 }
 

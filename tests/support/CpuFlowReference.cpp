@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <utility>
 
 #include "core/Constants.hpp"
 #include "flow/SlopeGravity.hpp"
@@ -15,6 +16,50 @@ namespace talus::test {
 
 using flow::Boundary;
 using flow::Limiter;
+
+namespace {
+
+/// Speed of a side towards the face (towards = +1 for the minus side, -1 for the plus side) where it
+/// arrives supercritically, else 0.
+double approachSpeed(double h, double un, double towards, double g) {
+  const double w = std::max(0.0, towards * un);
+  return w * w > g * h ? w : 0.0;
+}
+
+/// A side's (thickness, normal velocity) at the face bed zs >= its own bed
+/// (kernels/flow/bernoulli_face.cl): Audusse's (eta - zs, un) unless it arrives supercritically
+/// with speed w; then the depth with the same discharge and total head h + w^2 / (2 g) - (zs - z)
+/// on the supercritical branch (Bernoulli), solved here by bisection between the side's depth and
+/// the critical depth (an independent root finder from the kernel's Newton iteration), or the
+/// critical state 2/3 E where the rise chokes the flow.
+std::pair<double, double> bernoulliState(double h, double eta, double un, double towards, double g, double zs) {
+  const double w = approachSpeed(h, un, towards, g);
+  if (!(w > 0.0) || !(h > 0.0)) return {std::max(0.0, eta - zs), un};
+  const double es = eta + w * w / (2.0 * g) - zs;
+  if (!(es > 0.0)) return {0.0, 0.0};
+  const double q2 = h * h * un * un, hc = std::cbrt(q2 / g);
+  if (es <= 1.5 * hc) return {2.0 * es / 3.0, std::copysign(std::min(std::fabs(un), std::sqrt(2.0 * g * es / 3.0)), un)};
+  // f(x) = x + q^2 / (2 g x^2) - es: f(h) = zs - z >= 0 and f(hc) = 3/2 hc - es < 0, so the root on
+  // h's branch lies between h and hc.
+  double a = h, b = hc;
+  for (int it = 0; it < 200 && std::fabs(a - b) > 1e-15 * std::max(a, b); ++it) {
+    const double mid = 0.5 * (a + b);
+    const double f = mid + q2 / (2.0 * g * mid * mid) - es;
+    (f > 0.0 ? a : b) = mid;
+  }
+  const double x = 0.5 * (a + b);
+  return {x, x > h ? h * un / x : un};  // the face never passes more than the side's discharge h u
+}
+
+/// Bed-jump term of a side re-measured from z* (riemann.cl, face_between): its momentum flux minus
+/// that of its face state, without g; Audusse's (h^2 - h*^2) / 2 unless it arrives supercritically.
+double bernoulliJump(double h, double un, std::pair<double, double> face, double towards, double g) {
+  double c = 0.5 * (h * h - face.first * face.first);
+  if (approachSpeed(h, un, towards, g) > 0.0) c += (h * un * un - face.first * face.second * face.second) / g;
+  return c;
+}
+
+}  // namespace
 
 CpuFlowReference::CpuFlowReference(const Grid& grid, const flow::FlowSettings& settings,
                                    const flow::FlowInput& in)
@@ -210,17 +255,20 @@ CpuFlowReference::FaceFlux CpuFlowReference::faceFlux(const State& s, int i, int
       ghost.eta = bedAtFace + ghost.h;
     }
   }
-  // Chen & Noelle (2017, eq. 3.4-3.9): face bed = higher face bed, but not above the lower free
-  // surface; a side below it is re-measured from it (Audusse et al. 2004), a side above it keeps its
-  // thickness and takes the bed force of the drop, h (z* - z).
+  // Chen & Noelle (2017, eq. 3.4-3.9): face bed = higher face bed, but not above the lower head
+  // (surface plus the kinetic head of the approach to the face); a side below it is re-measured from
+  // it (Audusse et al. 2004 at rest, Bernoulli when approaching), a side above it keeps its state and
+  // takes the bed force of the drop, h (z* - z).
   auto solve = [&]() {
     const double zl = L.eta - L.h, zr = R.eta - R.h;
-    const double bedFace = std::min(std::max(zl, zr), std::min(L.eta, R.eta));
-    const double hl = bedFace >= zl ? std::max(0.0, L.eta - bedFace) : L.h;
-    const double hr = bedFace >= zr ? std::max(0.0, R.eta - bedFace) : R.h;
-    FaceFlux r = riemann(hl, L.un, L.ut, hr, R.un, R.ut, std::max(L.g, R.g));
-    r.corrMinus = bedFace >= zl ? 0.5 * (L.h * L.h - hl * hl) : L.h * (bedFace - zl);
-    r.corrPlus = bedFace >= zr ? 0.5 * (R.h * R.h - hr * hr) : R.h * (bedFace - zr);
+    const double wl = approachSpeed(L.h, L.un, 1.0, L.g), wr = approachSpeed(R.h, R.un, -1.0, R.g);
+    const double headL = L.eta + wl * wl / (2.0 * L.g), headR = R.eta + wr * wr / (2.0 * R.g);
+    const double bedFace = std::min(std::max(zl, zr), std::min(headL, headR));
+    const auto sl = bedFace >= zl ? bernoulliState(L.h, L.eta, L.un, 1.0, L.g, bedFace) : std::make_pair(L.h, L.un);
+    const auto sr = bedFace >= zr ? bernoulliState(R.h, R.eta, R.un, -1.0, R.g, bedFace) : std::make_pair(R.h, R.un);
+    FaceFlux r = riemann(sl.first, sl.second, L.ut, sr.first, sr.second, R.ut, std::max(L.g, R.g));
+    r.corrMinus = bedFace >= zl ? bernoulliJump(L.h, L.un, sl, 1.0, L.g) : L.h * (bedFace - zl);
+    r.corrPlus = bedFace >= zr ? bernoulliJump(R.h, R.un, sr, -1.0, R.g) : R.h * (bedFace - zr);
     return r;
   };
   f = solve();
