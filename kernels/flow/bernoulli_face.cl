@@ -57,7 +57,11 @@ INLINE real approach_head(real h, real e, real un, real towards, real g) {
 INLINE real2 bernoulli_state(real h, real e, real un, real towards, real g, real zs) {
   if (!(approach_speed(h, un, towards, g) > (real)0) || !(h > (real)0))
     return (real2)(fmax((real)0, e - zs), un);
-  const real es = approach_head(h, e, un, towards, g) - zs;  // specific energy left at z*
+  // Specific energy left at z*, from the side's own thickness and the rise zs - (e - h): not from
+  // the absolute surface and face bed, whose difference carries the rounding of the elevation
+  // (1e-4 m in float at 2000 m), which the root amplifies by 1 / (Fr^2 - 1) near Froude 1.
+  const real w = approach_speed(h, un, towards, g);
+  const real es = h + w * w / ((real)2 * g) - (zs - (e - h));
   if (!(es > (real)0)) return (real2)((real)0, (real)0);
   const real q2 = h * h * un * un;
   const real hc = cbrt(q2 / g);
