@@ -59,9 +59,12 @@ INLINE real2 bernoulli_state(real h, real e, real un, real towards, real g, real
     return (real2)(fmax((real)0, e - zs), un);
   // Specific energy left at z*, from the side's own thickness and the rise zs - (e - h): not from
   // the absolute surface and face bed, whose difference carries the rounding of the elevation
-  // (1e-4 m in float at 2000 m), which the root amplifies by 1 / (Fr^2 - 1) near Froude 1.
+  // (1e-4 m in float at 2000 m), which the root amplifies by 1 / (Fr^2 - 1) near Froude 1. Where
+  // z* is the side's own face bed the rise is 0 bit for bit (z* is one of the values it is the
+  // min/max of); where it is the side's own head (the cap) nothing is left, exactly.
   const real w = approach_speed(h, un, towards, g);
-  const real es = h + w * w / ((real)2 * g) - (zs - (e - h));
+  const real head = approach_head(h, e, un, towards, g);
+  const real es = zs == head ? (real)0 : h + w * w / ((real)2 * g) - (zs - (e - h));
   if (!(es > (real)0)) return (real2)((real)0, (real)0);
   const real q2 = h * h * un * un;
   const real hc = cbrt(q2 / g);

@@ -35,7 +35,10 @@ double approachSpeed(double h, double un, double towards, double g) {
 std::pair<double, double> bernoulliState(double h, double eta, double un, double towards, double g, double zs) {
   const double w = approachSpeed(h, un, towards, g);
   if (!(w > 0.0) || !(h > 0.0)) return {std::max(0.0, eta - zs), un};
-  const double es = h + w * w / (2.0 * g) - (zs - (eta - h));  // from h and the rise, as the kernel
+  // From h and the rise (exact where z* is the side's own face bed), and exactly 0 where z* is the
+  // side's own head, as in the kernel.
+  const double head = eta + w * w / (2.0 * g);
+  const double es = zs == head ? 0.0 : h + w * w / (2.0 * g) - (zs - (eta - h));
   if (!(es > 0.0)) return {0.0, 0.0};
   const double q2 = h * h * un * un, hc = std::cbrt(q2 / g);
   if (es <= 1.5 * hc) return {2.0 * es / 3.0, std::copysign(std::min(std::fabs(un), std::sqrt(2.0 * g * es / 3.0)), un)};
