@@ -39,32 +39,33 @@
 #define SUPERCRITICAL_FACES 1
 #endif
 
-/// Normal speed of a side towards the face when it arrives supercritically (w^2 > g h), else 0:
+/// How a side approaches the face: its normal speed towards it when it arrives supercritically
+/// (w^2 > g h), else 0, and its head, the free surface plus the kinetic head of that approach,
+/// e + w^2 / (2 g). Computed once per side and face (hydrostatic_face) and passed on.
+typedef struct {
+  real w, head;
+} Approach;
+
 /// `towards` is +1 for the minus side, -1 for the plus side.
-INLINE real approach_speed(real h, real un, real towards, real g) {
-  const real w = fmax((real)0, towards * un);
-  return SUPERCRITICAL_FACES && w * w > g * h ? w : (real)0;
+INLINE Approach side_approach(real h, real e, real un, real towards, real g) {
+  Approach a;
+  const real v = fmax((real)0, towards * un);
+  a.w = SUPERCRITICAL_FACES && v * v > g * h ? v : (real)0;
+  a.head = e + a.w * a.w / ((real)2 * g);
+  return a;
 }
 
-/// Free surface plus the kinetic head of a supercritical approach, e + w^2 / (2 g).
-INLINE real approach_head(real h, real e, real un, real towards, real g) {
-  const real w = approach_speed(h, un, towards, g);
-  return e + w * w / ((real)2 * g);
-}
-
-/// (h', u') at the face bed zs >= z = e - h for a side (h, e, un) arriving supercritically (see
-/// above); otherwise Audusse's (e - zs, un).
-INLINE real2 bernoulli_state(real h, real e, real un, real towards, real g, real zs) {
-  if (!(approach_speed(h, un, towards, g) > (real)0) || !(h > (real)0))
+/// (h', u') at the face bed zs >= z = e - h for a side (h, e, un) arriving supercritically (a.w > 0,
+/// see above); otherwise Audusse's (e - zs, un).
+INLINE real2 bernoulli_state(real h, real e, real un, Approach a, real g, real zs) {
+  if (!(a.w > (real)0) || !(h > (real)0))
     return (real2)(fmax((real)0, e - zs), un);
   // Specific energy left at z*, from the side's own thickness and the rise zs - (e - h): not from
   // the absolute surface and face bed, whose difference carries the rounding of the elevation
   // (1e-4 m in float at 2000 m), which the root amplifies by 1 / (Fr^2 - 1) near Froude 1. Where
   // z* is the side's own face bed the rise is 0 bit for bit (z* is one of the values it is the
   // min/max of); where it is the side's own head (the cap) nothing is left, exactly.
-  const real w = approach_speed(h, un, towards, g);
-  const real head = approach_head(h, e, un, towards, g);
-  const real es = zs == head ? (real)0 : h + w * w / ((real)2 * g) - (zs - (e - h));
+  const real es = zs == a.head ? (real)0 : h + a.w * a.w / ((real)2 * g) - (zs - (e - h));
   if (!(es > (real)0)) return (real2)((real)0, (real)0);
   const real q2 = h * h * un * un;
   const real hc = cbrt(q2 / g);
@@ -91,10 +92,10 @@ INLINE real2 bernoulli_state(real h, real e, real un, real towards, real g, real
 /// Bed-jump momentum term of a side re-measured from z*, without the factor g: the difference of its
 /// normal-momentum flux (pressure and advection) and that of its face state, so that the flux at z*
 /// plus this term is the side's own flux (a steady flow over the step stays steady). At rest, and
-/// for water moving away from the face, Audusse's (h^2 - h'^2) / 2.
-INLINE real bernoulli_jump_term(real h, real un, real2 face, real towards, real g) {
+/// for water moving away from the face (w = 0), Audusse's (h^2 - h'^2) / 2.
+INLINE real bernoulli_jump_term(real h, real un, real2 face, real w, real g) {
   real c = (real)0.5 * (h * h - face.x * face.x);
-  if (approach_speed(h, un, towards, g) > (real)0) c += (h * un * un - face.x * face.y * face.y) / g;
+  if (w > (real)0) c += (h * un * un - face.x * face.y * face.y) / g;
   return c;
 }
 

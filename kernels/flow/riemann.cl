@@ -124,6 +124,7 @@ INLINE void open_ghost(const Side* in, Side* gh, real s, real far) {
 typedef struct {
   real zm, zp, bs;  // face beds and z*
   real2 sm, sp;     // (thickness, normal velocity) of each side at the face
+  real wm, wp;      // each side's supercritical approach speed (0 at rest, subcritical, moving away)
   FaceFlux r;
 } HydrostaticFace;
 
@@ -131,11 +132,13 @@ INLINE HydrostaticFace hydrostatic_face(Side m, Side p) {
   HydrostaticFace f;
   f.zm = m.e - m.h;
   f.zp = p.e - p.h;
-  const real head_m = approach_head(m.h, m.e, m.un, (real)1, m.g);
-  const real head_p = approach_head(p.h, p.e, p.un, (real)-1, p.g);
-  f.bs = fmin(fmax(f.zm, f.zp), fmin(head_m, head_p));
-  f.sm = f.bs >= f.zm ? bernoulli_state(m.h, m.e, m.un, (real)1, m.g, f.bs) : (real2)(m.h, m.un);
-  f.sp = f.bs >= f.zp ? bernoulli_state(p.h, p.e, p.un, (real)-1, p.g, f.bs) : (real2)(p.h, p.un);
+  const Approach am = side_approach(m.h, m.e, m.un, (real)1, m.g);
+  const Approach ap = side_approach(p.h, p.e, p.un, (real)-1, p.g);
+  f.wm = am.w;
+  f.wp = ap.w;
+  f.bs = fmin(fmax(f.zm, f.zp), fmin(am.head, ap.head));
+  f.sm = f.bs >= f.zm ? bernoulli_state(m.h, m.e, m.un, am, m.g, f.bs) : (real2)(m.h, m.un);
+  f.sp = f.bs >= f.zp ? bernoulli_state(p.h, p.e, p.un, ap, p.g, f.bs) : (real2)(p.h, p.un);
   f.r = riemann_flux(f.sm.x, f.sm.y, m.ut, f.sp.x, f.sp.y, p.ut, fmax(m.g, p.g));
   return f;
 }
@@ -200,8 +203,8 @@ INLINE Face face_between(int m_in, Side m, int p_in, Side p, int kind, real far)
   // the bed force of the fall to the neighbour's head, which drives a sheet on a staircase by its
   // true slope. Without it (Audusse's z* = max(z_m, z_p)) the face only passes a dam-break flux and
   // water on slopes steeper than depth over cell size is held back by the grid.
-  f.corr_m = bs >= zm ? bernoulli_jump_term(m.h, m.un, hf.sm, (real)1, m.g) : m.h * (bs - zm);
-  f.corr_p = bs >= zp ? bernoulli_jump_term(p.h, p.un, hf.sp, (real)-1, p.g) : p.h * (bs - zp);
+  f.corr_m = bs >= zm ? bernoulli_jump_term(m.h, m.un, hf.sm, hf.wm, m.g) : m.h * (bs - zm);
+  f.corr_p = bs >= zp ? bernoulli_jump_term(p.h, p.un, hf.sp, hf.wp, p.g) : p.h * (bs - zp);
   return f;
 }
 
