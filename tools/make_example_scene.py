@@ -8,6 +8,7 @@ thickness is h = max(0, level - z) inside the disc and 0 outside. It is released
 
 Usage (Debian's python3 with python3-numpy and python3-gdal):
     /usr/bin/python3 tools/make_example_scene.py [DEM.tif] [--release RELEASE.tif] [--out DIR]
+        [--window ROW0 COL0 ROWS COLS] [--name RUNFILE]
 
 Defaults: DEM = ../shared/data/terrain/avaKot/dem.tif relative to the repository root,
 release = release.tif next to the DEM, out = data/kot_dambreak in the repository.
@@ -82,6 +83,7 @@ def main():
     parser.add_argument("--out", default=os.path.join(REPO, "data", "kot_dambreak"))
     parser.add_argument("--window", type=int, nargs=4, metavar=("ROW0", "COL0", "ROWS", "COLS"),
                         default=DEFAULT_WINDOW)
+    parser.add_argument("--name", default="kot_dambreak", help="run-file name without .run (default kot_dambreak)")
     args = parser.parse_args()
     release_path = args.release or os.path.join(os.path.dirname(os.path.abspath(args.dem)), "release.tif")
 
@@ -132,7 +134,7 @@ def main():
     write_tif(os.path.join(args.out, "dem.tif"), z_out, gt_crop, projection,
               nodata if nodata is not None else -9999.0)
     write_tif(os.path.join(args.out, "water.tif"), h, gt_crop, projection, None)
-    with open(os.path.join(args.out, "kot_dambreak.run"), "w") as f:
+    with open(os.path.join(args.out, args.name + ".run"), "w") as f:
         f.write(RUN_FILE)
 
     cx = gt_crop[0] + (cc - c0 + 0.5) * dx
@@ -148,7 +150,7 @@ def main():
           % (RADIUS_M, disc.sum(), z[disc].min(), z[disc].max(), level))
     print("  max depth %.2f m, mean depth %.2f m" % (h32.max(), h32[disc].mean()))
     print("  volume sum(h*dx*dy) = %.1f m3" % (h32.sum() * dx * dx))
-    print("wrote %s/{dem.tif,water.tif,kot_dambreak.run}" % os.path.relpath(args.out, REPO))
+    print("wrote %s/{dem.tif,water.tif,%s.run}" % (os.path.relpath(args.out, REPO), args.name))
 
 
 if __name__ == "__main__":

@@ -5,10 +5,11 @@
 # usage: bash bench/peers/geoclaw_compare.sh [--quick] [--fresh] [--only STEPS]
 #   --quick        each timing case once, no 2.5 m grid
 #   --fresh        forget the runs recorded in $PEERS_WORK/runs.jsonl (otherwise a rerun resumes)
-#   --only STEPS   comma list of: setup,prepare,kot,grid,ritter,plane,rough,roll,report (default: all, in
-#                  order; plane = the steep-plane diagnostic, steep_plane.py, a few seconds; rough = the
+#   --only STEPS   comma list of: setup,prepare,kot,grid,ritter,plane,rough,roll,dem,report (default: all,
+#                  in order; plane = the steep-plane diagnostic, steep_plane.py, a few seconds; rough = the
 #                  rough-slope grid study, rough_slope.py, about 2 minutes; roll = roll waves on a steep
-#                  plane, roll_waves.py, about 2 minutes)
+#                  plane, roll_waves.py, about 2 minutes; dem = the grid study of a second real DEM,
+#                  dem_study.py, about 25 minutes, its own table in $PEERS_WORK/results_<case>.md)
 #
 # environment:
 #   PEERS_VENV   Python virtual environment (default /work/clawpack-venv)
@@ -18,6 +19,8 @@
 #   PEERS_RITTER_DX (default 1,0.5,0.25), PEERS_REPS (default 3; --quick: 1)
 #   TALUS_BIN    Talus executable to time (default: a snapshot copy of build/src/talus)
 #   PEERS_GRID_TALUS_CONFIG  Talus configuration of the grid study (default float_sc0)
+#   PEERS_DEM_CASE  scene of the dem step (default data/alr_dambreak); PEERS_DEM_LEVELS Talus grids
+#                (default 5,2.5,1.25); PEERS_DEM_GEOCLAW_LEVELS GeoClaw grids (default 5,2.5)
 set -euo pipefail
 
 HERE="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
@@ -28,7 +31,7 @@ CLAWV="${CLAWPACK_VERSION:-5.14.0}"
 FFLAGS_GC="${PEERS_FFLAGS:--O2 -fopenmp}"
 QUICK=0
 FRESH=0
-ONLY="setup,prepare,kot,grid,ritter,plane,rough,roll,report"
+ONLY="setup,prepare,kot,grid,ritter,plane,rough,roll,dem,report"
 
 while [ $# -gt 0 ]; do
   case "$1" in
@@ -153,4 +156,9 @@ if want ritter; then log "Ritter (dx $RITTER_DX m)"; "$PY" "$HERE/peers_run.py" 
 if want plane;  then log "steep-plane diagnostic"; "$PY" "$HERE/steep_plane.py" "$WORK" > /dev/null; fi
 if want rough;  then log "rough-slope grid study"; "$PY" "$HERE/rough_slope.py" "$WORK" > /dev/null; fi
 if want roll;   then log "roll waves on a steep plane"; "$PY" "$HERE/roll_waves.py" "$WORK" > /dev/null; fi
+if want dem;    then
+  log "second real DEM: ${PEERS_DEM_CASE:-$REPO/data/alr_dambreak}"
+  "$PY" "$HERE/dem_study.py" "${PEERS_DEM_CASE:-$REPO/data/alr_dambreak}" "$WORK" \
+    --talus-levels "${PEERS_DEM_LEVELS:-5,2.5,1.25}" --geoclaw-levels "${PEERS_DEM_GEOCLAW_LEVELS:-5,2.5}"
+fi
 if want report; then "$PY" "$HERE/compare_maps.py" "$WORK"; log "written $WORK/results.md"; fi
