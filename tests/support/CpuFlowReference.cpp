@@ -127,7 +127,8 @@ CpuFlowReference::Faces CpuFlowReference::reconstruct(const State& s, int i, int
   const Prim c = prim(s, i, j, dir);
   // The surface with the limiter over a minmod bed (flow_common.cl, reconstruct_surface), the bed
   // slope moved from db towards 0 just enough that both face thicknesses h -+ (se - slope)/2 lie
-  // within [hmin, hmax] of the cell and its neighbours; where no such slope exists but the unflattened faces
+  // within the room below (the thicknesses' range [hmin, hmax] of the cell and its neighbours, or the
+  // thickness slope of surface and bed limited alike); where no such slope exists but the unflattened faces
   // are positive (|se - db| <= 2h), the bed keeps db and the thickness slope se - db is clipped to
   // that range; zero slopes next to outside cells, in dry cells and otherwise.
   double dh = 0, de = 0, dun = 0, dut = 0;
@@ -138,7 +139,10 @@ CpuFlowReference::Faces CpuFlowReference::reconstruct(const State& s, int i, int
     const double db = a * b <= 0.0 ? 0.0 : (std::fabs(a) < std::fabs(b) ? a : b);
     const double se = limiter(c.eta - m.eta, p.eta - c.eta);
     const double hmax = std::max({m.h, c.h, p.h}), hmin = std::min({m.h, c.h, p.h});
-    const double room = 2.0 * std::min(hmax - c.h, c.h - hmin);  // |thickness slope| <= room
+    // |thickness slope| <= room: within [hmin, hmax], or within the thickness slope of the surface
+    // and the bed limited alike if that is larger; never beyond positivity (2h)
+    const double room = std::min(2.0 * c.h, std::max(2.0 * std::min(hmax - c.h, c.h - hmin),
+                                                      std::fabs(se - limiter(a, b))));
     // The bed slope nearest db in [min(0, db), max(0, db)] with |se - slope| <= room, if any.
     const double lo = std::max(se - room, std::min(0.0, db)), hi = std::min(se + room, std::max(0.0, db));
     const bool flattenable = lo <= hi;

@@ -157,7 +157,14 @@ TEST(RollWaves, SmoothCrestsGrowAtTheAnalyticRate) {
   // margin of a third), then 5 % and 2 % at 40 and 80 cells: the error must fall with the cell at
   // about second order. The first-order scheme (`Limiter=none`) damps the waves: -103 / -49 / -28 %
   // of the exponent at 20 / 40 / 80 cells per wavelength.
+  // With the thickness slope bounded by the larger of its range and the slope of surface and bed
+  // limited alike (flow_common.cl, reconstruct_surface; 2026-12-06, thirteenth session) the exponent
+  // errors are MC +10.0 / +3.1 / +0.9 %, van Leer +8.5 / +2.9 / +0.8 %, minmod -6.4 / -1.8 / -0.2 %,
+  // and the phase speeds +1.20 / +0.38 / +0.10 % (minmod; the others within 0.9 %).
   const double bounds[3] = {0.15, 0.05, 0.02};
+  // Phase speed: a second-order dispersion error, bounded by 1.5 / 0.5 / 0.2 % at 20 / 40 / 80 cells
+  // (the largest measured error with a margin of a quarter, falling by about 4 per halving).
+  const double speedBounds[3] = {0.015, 0.005, 0.002};
   for (fl::Limiter l : {fl::Limiter::Minmod, fl::Limiter::VanLeer, fl::Limiter::MC}) {
     for (int level = 0; level < 3; ++level) {
       const int cells = 20 << level;
@@ -166,8 +173,8 @@ TEST(RollWaves, SmoothCrestsGrowAtTheAnalyticRate) {
       EXPECT_LT(std::fabs(exponentError), bounds[level])
           << name(l) << ", " << cells << " cells per wavelength: amplification " << g.amplification << " against "
           << exactAmp;
-      // The phase speed is a wave speed of the scheme: within 1 % at both resolutions.
-      EXPECT_NEAR(g.phaseSpeed / exactSpeed, 1.0, 0.01) << name(l) << ", " << cells << " cells per wavelength";
+      EXPECT_NEAR(g.phaseSpeed / exactSpeed, 1.0, speedBounds[level]) << name(l) << ", " << cells
+                                                                       << " cells per wavelength";
     }
   }
 }
