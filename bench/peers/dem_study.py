@@ -133,6 +133,13 @@ def hmax(work, rec):
     return np.where(np.isnan(dem.values), np.nan, np.nan_to_num(h)), dem.dx
 
 
+def distance(a, dxa, b, dxb):
+    """compare_maps.distance on the coarser of the two grids (a finer map is block-averaged first)."""
+    if dxa < dxb * (1 - 1e-9):
+        a, dxa = compare_maps.aggregate(a, int(round(dxb / dxa))), dxb
+    return compare_maps.distance(a, dxa, b, dxb)[0]
+
+
 def report(work, case, levels, gc_levels):
     recs = {}
     for r in peers_run.load_records(work):
@@ -147,8 +154,8 @@ def report(work, case, levels, gc_levels):
     out(f"# Water release on {case}: grid study, Talus and GeoClaw (bench/peers/dem_study.py)")
     out("")
     out(f"Talus: {peers_run.GRID_TALUS_CONFIG} (slope correction off), one run per grid; GeoClaw 5.14 "
-        f"defaults, dry tolerance 1e-6 m; both on two threads. Distances: sum|a - B| / sum|B| of max-depth maps, "
-        f"B the reference block-averaged to a's grid.")
+        f"defaults, dry tolerance 1e-6 m; both on two threads. Distances: sum|a - B| / sum|B| of max-depth maps "
+        f"on the coarser grid of the two (the finer map block-averaged).")
     out("")
     out(f"| code | grid [m] | steps | wall [s] | inundated area > 1 cm [m²] | median peak depth [m] | "
         f"to Talus {min(levels):g} m | to GeoClaw {min(gc_levels):g} m |")
@@ -160,8 +167,8 @@ def report(work, case, levels, gc_levels):
             continue
         a, dxa = maps[(code, name)]
         st = compare_maps.map_stats(a, dxa)
-        d_t = compare_maps.distance(a, dxa, *maps[ref_t])[0] if ref_t in maps and ref_t != (code, name) else None
-        d_g = compare_maps.distance(a, dxa, *maps[ref_g])[0] if ref_g in maps and ref_g != (code, name) else None
+        d_t = distance(a, dxa, *maps[ref_t]) if ref_t in maps and ref_t != (code, name) else None
+        d_g = distance(a, dxa, *maps[ref_g]) if ref_g in maps and ref_g != (code, name) else None
         r = recs[(code, name)]
         table[f"{code}/{name}"] = dict(st, to_talus_ref=d_t, to_geoclaw_ref=d_g, steps=r.get("steps"),
                                        wall_s=r["wall_s"])
