@@ -61,13 +61,9 @@ def column_of(dem, water):
 
 
 def column_on(dem, cx, cy, radius, eta):
-    """h = max(0, eta - z) inside the disc, 0 elsewhere (tools/make_example_scene.py)."""
-    x, y = dem.centres()
-    d2 = (x[None, :] - cx) ** 2 + (y[:, None] - cy) ** 2
-    z = dem.values
-    # a relative 1e-9 on the radius: cells whose centre lies exactly on the circle stay inside
-    h = np.where((d2 <= (radius * (1 + 1e-9)) ** 2) & ~np.isnan(z), np.maximum(0.0, eta - np.nan_to_num(z)), 0.0)
-    return gc.Raster(h, dem.ulx, dem.uly, dem.dx, dem.wkt)
+    """The scene's column on `dem` (geoclaw_cases.water_column); a relative 1e-9 on the radius keeps
+    cells whose centre lies exactly on the circle inside, as tools/make_example_scene.py does."""
+    return gc.water_column(dem, cx, cy, radius * (1 + 1e-9), eta)
 
 
 def prepare(case_dir, work, case, levels, gc_levels, radius):
@@ -122,17 +118,6 @@ def prepare(case_dir, work, case, levels, gc_levels, radius):
     return info
 
 
-def hmax(work, rec):
-    gdir = os.path.join(work, "grids", rec["case"])
-    dem = gc.read_raster(os.path.join(gdir, "dem.tif"))
-    if rec["code"] == "talus":
-        h = gc.read_raster(os.path.join(rec["out_dir"], "hfmax.tif")).values
-    else:
-        h, _ = peers_io.read_fgmax(rec["out_dir"], dem.nx, dem.ny, dem.dx)
-        h = np.maximum(np.nan_to_num(h), np.load(os.path.join(work, "geoclaw", rec["case"], "target_h.npy")))
-    return np.where(np.isnan(dem.values), np.nan, np.nan_to_num(h)), dem.dx
-
-
 def distance(a, dxa, b, dxb):
     """compare_maps.distance on the coarser of the two grids (a finer map is block-averaged first)."""
     if dxa < dxb * (1 - 1e-9):
@@ -147,7 +132,7 @@ def report(work, case, levels, gc_levels):
             recs[(r["code"], r["case"])] = r  # the last successful run of each
     rows = [("talus", case + "_r" + gc.res_name(v), v) for v in sorted(levels, reverse=True)]
     rows += [("geoclaw", case + "_r" + gc.res_name(v), v) for v in sorted(gc_levels, reverse=True)]
-    maps = {k: hmax(work, recs[k]) for k in [(c, n) for c, n, _ in rows] if k in recs}
+    maps = {k: compare_maps.hmax_map(work, recs[k]["key"], {"out": recs[k]["out_dir"]}) for k in [(c, n) for c, n, _ in rows] if k in recs}
     ref_t = ("talus", case + "_r" + gc.res_name(min(levels)))
     ref_g = ("geoclaw", case + "_r" + gc.res_name(min(gc_levels)))
     out = peers_io.MarkdownLog()

@@ -188,12 +188,13 @@ def refine_bilinear(r, f):
     return Raster(out, r.ulx, r.uly, r.dx / f, r.wkt)
 
 
-def water_column(dem):
-    """h = max(0, 1959.83 - z) inside the 40 m disc around the README's centre, 0 elsewhere."""
+def water_column(dem, cx=DISC_X, cy=DISC_Y, radius=DISC_R, eta=DISC_ETA):
+    """h = max(0, eta - z) inside the disc of `radius` around (cx, cy), 0 elsewhere; by default
+    kot_dambreak's column (1959.83 m, 40 m, the README's centre)."""
     x, y = dem.centres()
-    d2 = (x[None, :] - DISC_X) ** 2 + (y[:, None] - DISC_Y) ** 2
+    d2 = (x[None, :] - cx) ** 2 + (y[:, None] - cy) ** 2
     z = dem.values
-    h = np.where((d2 <= DISC_R ** 2) & ~np.isnan(z), np.maximum(0.0, DISC_ETA - np.nan_to_num(z)), 0.0)
+    h = np.where((d2 <= radius ** 2) & ~np.isnan(z), np.maximum(0.0, eta - np.nan_to_num(z)), 0.0)
     return Raster(h, dem.ulx, dem.uly, dem.dx, dem.wkt)
 
 
