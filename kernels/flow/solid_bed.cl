@@ -40,6 +40,17 @@
 //       staircase or at a cliff edge): the bed force g_eff h_s (z_s - z*) of the fall the material makes
 //       to the neighbour's surface, so a thin front on a slope is driven by its true slope.
 //    So with any K a layer with a level surface beside a step is held exactly as by the domain wall.
+//    3a. Flow over a rise (solid_face_state). h*_s = w_s - z* is the state of material at rest; moving
+//    material that arrives supercritically (faster than its waves, u^2 > G h) climbs a rise with
+//    its energy, as over a resolved ramp, and keeps its discharge: its face state is the Bernoulli
+//    state of the depth-averaged solids at z* (the granular form of the water's faces,
+//    bernoulli_face.cl; Noelle, Xing & Shu 2007, J. Comput. Phys. 226, sec. 3), z* is capped by its
+//    head instead of its surface, and its jump force includes the momentum the climb costs, so a
+//    steady flow over a step is an exact discrete steady state (test_solid_flow_over_step.cpp).
+//    With h*, a sheet thinner than a cell-scale rise of the reconstructed bed passed nothing and
+//    one thicker passed only (h - dz) u: on a DEM rough at the scale of the cell fronts were held at
+//    every such rise, and the runout and area grew with refinement (docs/terrain_comparison.md).
+//    Material at rest, subcritical or moving away keeps h* (a deposit beside a step stays exact).
 // 4. A column that meets a wall cannot move into it. The part of each side's column that a rise
 //    stops (fraction beta = d_b / h: what its kinetic energy cannot lift over the rise, rise_force;
 //    all of it at the domain wall) takes the normal
@@ -84,6 +95,10 @@
 #ifndef TALUS_FLOW_SOLID_BED_CL
 #define TALUS_FLOW_SOLID_BED_CL
 #include "flow/riemann.cl"
+// 1: supercritical solids climb rises with their energy (point 3a); 0: Audusse's h* everywhere.
+#ifndef SOLID_SUPERCRITICAL_FACES
+#define SOLID_SUPERCRITICAL_FACES 1
+#endif
 
 /// Change of the reconstructed bed across cell c (plus face minus minus face) along one axis, from
 /// the beds of its neighbours (bm, bp; m_in, p_in: inside the domain).
@@ -129,6 +144,84 @@ INLINE real rise_force(SolidSide s, real hstar, real dz, real u_in, real* beta) 
   return side_pressure(s, s.h) - side_pressure(s, hstar);
 }
 
+/// How a solid side approaches a face (the solids' form of bernoulli_face.cl, point 3a): its
+/// pressure gravity G = (dp/dh) / h of its lateral pressure p(h) = h Pi(h) (G h is the square of the
+/// wave speed; 2a for a cohesionless dry layer, K g_n: the water's g for K = 1), its speed towards
+/// the face w where it arrives supercritically (w^2 > G h, else 0), and the height its column
+/// reaches: its surface z + h, or for a supercritical arrival the head z + (w^2 / 2 + G h) / g_eff
+/// where that lies higher.
+typedef struct {
+  real w, G, head;
+} SolidApproach;
+
+/// `towards` is +1 for the minus side, -1 for the plus side.
+INLINE SolidApproach solid_approach(SolidSide s, real towards) {
+  SolidApproach a;
+  const real pi = side_pi(s, s.h);
+  a.G = pi > (real)0 && s.h > (real)0 ? (pi + s.a * s.h) / s.h : (real)0;
+  const real v = fmax((real)0, towards * s.un);
+  a.w = SOLID_SUPERCRITICAL_FACES && s.h > (real)0 && v * v > a.G * s.h && s.geff > (real)0 ? v : (real)0;
+  a.head = s.z + s.h;
+  if (a.w > (real)0) a.head = fmax(a.head, s.z + ((real)0.5 * a.w * a.w + a.G * s.h) / s.geff);
+  return a;
+}
+
+/// Thickness and normal velocity of side s at the face bed zs >= s.z. A supercritical arrival
+/// (a.w > 0) keeps its discharge q = h u and its energy per unit mass across the rise (steady,
+/// frictionless flow of the depth-averaged solids over a step: u^2 / 2 + G h + g_eff z constant,
+/// the momentum balance u u' + G h' + g_eff z' = 0 integrated with G frozen at the side's value,
+/// exact for a cohesionless dry layer): h' is the supercritical root of
+///   q^2 / (2 h'^2) + G h' = e = w^2 / 2 + G h - g_eff (zs - z),
+/// between h and the critical thickness h_c = (q^2 / G)^(1/3); below the critical energy 3/2 G h_c
+/// the rise chokes the flow (critical state h' = 2 e / (3 G), u' = sqrt(G h')), e <= 0 stops it, and
+/// without lateral pressure (G = 0) h' = q / sqrt(2 e). Otherwise (rest, subcritical, moving away)
+/// Audusse's h* = h - (zs - z) with the velocity kept.
+INLINE real2 solid_face_state(SolidSide s, SolidApproach a, real zs) {
+  if (zs == s.z) return (real2)(s.h, s.un);  // no rise: the side's own state, bit for bit
+  if (!(a.w > (real)0)) return (real2)(clamp(s.h - (zs - s.z), (real)0, s.h), s.un);
+  // The energy left at zs, from the side's own thickness and the rise (exactly the approach's where
+  // zs is the side's own face bed, exactly 0 where it is the side's head), as in bernoulli_state.
+  const real e = zs == a.head ? (real)0 : (real)0.5 * a.w * a.w + a.G * s.h - s.geff * (zs - s.z);
+  if (!(e > (real)0)) return (real2)((real)0, (real)0);
+  const real q = s.h * a.w;
+  if (!(a.G > (real)0)) return (real2)(q / sqrt((real)2 * e), copysign(sqrt((real)2 * e), s.un));
+  const real hc = cbrt(q * q / a.G);
+  if (e <= (real)1.5 * a.G * hc) {
+    const real hs = e * (real)(2.0 / 3.0) / a.G;
+    return (real2)(hs, copysign(fmin(a.w, sqrt(a.G * hs)), s.un));
+  }
+  // Newton from h on f(x) = q^2 / (2 x^2) + G x - e, convex and decreasing below h_c with f(h) >= 0:
+  // the iterates rise monotonically to the root.
+  real x = s.h;
+  for (int it = 0; it < 24; ++it) {
+    const real slope = a.G - q * q / (x * x * x);
+    if (!(slope < (real)0)) break;
+    const real next = x - ((real)0.5 * q * q / (x * x) + a.G * x - e) / slope;
+    const real kept = fmin(next, hc);
+    const int done = fabs(kept - x) <= (real)4 * REAL_EPS * x;
+    x = kept;
+    if (done) break;
+  }
+  return (real2)(x, copysign(q / x, s.un));
+}
+
+/// Bed-jump force of side s at a rise to zs, with its face state `st` (solid_face_state): the
+/// material's pressure on the step, p(h) - p(h'), and for a supercritical arrival the momentum its
+/// flow loses climbing it, h u^2 - h' u'^2, so that the face flux of the state at zs plus this term
+/// is the side's own flux (a steady flow over the step stays steady). `beta` as in rise_force; a
+/// supercritical arrival that passes (or chokes) is not blocked, one whose energy cannot lift it
+/// over the rise is blocked by the run-up rule of rise_force over its whole column.
+INLINE real solid_jump(SolidSide s, SolidApproach a, real2 st, real zs, real u_in, real* beta) {
+  if (!(a.w > (real)0)) return rise_force(s, st.x, zs - s.z, u_in, beta);
+  if (st.x > (real)0) {
+    *beta = (real)0;
+  } else {
+    SolidSide whole = s;
+    rise_force(whole, (real)0, zs - s.z, u_in, beta);
+  }
+  return side_pressure(s, s.h) - side_pressure(s, st.x) + s.h * s.un * s.un - st.x * st.y * st.y;
+}
+
 typedef struct {
   real fh, fqn, fqt, p;  // mass, normal momentum (no pressure), tangential momentum, pressure flux
   real corr_m, corr_p;   // bed-jump corrections of the minus / plus side (added to their face flux)
@@ -152,14 +245,18 @@ INLINE SolidFace solid_face(int m_in, SolidSide m, int p_in, SolidSide p, int ki
     p = m;
     p.un = wall ? -m.un : m.un;
   }
-  // h* = h - (rise to z*), so a side whose face bed is z* keeps its thickness bitwise.
+  // z* capped by the height each column reaches (its surface, or its head where it arrives
+  // supercritically, point 3a); a side whose face bed is z* keeps its thickness bitwise.
   const real zm = m.z, zp = p.z;
-  const real zs = fmin(fmax(zm, zp), fmin(zm + m.h, zp + p.h));
-  const real hm = clamp(m.h - (zs - zm), (real)0, m.h), hp = clamp(p.h - (zs - zp), (real)0, p.h);
+  const SolidApproach am = solid_approach(m, (real)1), ap = solid_approach(p, (real)-1);
+  const real zs = fmin(fmax(zm, zp), fmin(am.head, ap.head));
+  const real2 sm = zs >= zm ? solid_face_state(m, am, zs) : (real2)(m.h, m.un);
+  const real2 sp = zs >= zp ? solid_face_state(p, ap, zs) : (real2)(p.h, p.un);
+  const real hm = sm.x, hp = sp.x;
   if (hm > (real)0 || hp > (real)0) {
     const real pim = side_pi(m, hm), pip = side_pi(p, hp);
-    const real2 s = wave_speeds(hm, m.un, sqrt((real)2 * pim), hp, p.un, sqrt((real)2 * pip));
-    const FaceFlux r = hll_core(hm, m.un, m.ut, hm * pim, hp, p.un, p.ut, hp * pip, s);
+    const real2 s = wave_speeds(hm, sm.y, sqrt((real)2 * pim), hp, sp.y, sqrt((real)2 * pip));
+    const FaceFlux r = hll_core(hm, sm.y, m.ut, hm * pim, hp, sp.y, p.ut, hp * pip, s);
     const int closed = wall || locked;
     f.fh = closed ? (real)0 : r.fh;
     f.fqn = r.fqn;
@@ -167,14 +264,15 @@ INLINE SolidFace solid_face(int m_in, SolidSide m, int p_in, SolidSide p, int ki
     // A static contact transmits no more than either column can hold (point 6).
     f.p = locked ? fmin(r.p, fmin(side_pressure(m, m.h) + m.hold, side_pressure(p, p.h) + p.hold)) : r.p;
   }
-  // Bed jumps of each side (point 3): a drop is the fall, a rise takes the material's pressure.
+  // Bed jumps of each side (point 3): a drop is the fall, a rise takes the material's pressure
+  // (and, arriving supercritically, the momentum the climb costs).
   if (zs >= zm) {
-    f.corr_m = f.wall_m = rise_force(m, hm, zs - zm, m.un, &f.beta_m);
+    f.corr_m = f.wall_m = solid_jump(m, am, sm, zs, m.un, &f.beta_m);
   } else {
     f.corr_m = m.geff * m.h * (zs - zm);
   }
   if (zs >= zp) {
-    f.corr_p = f.wall_p = rise_force(p, hp, zs - zp, -p.un, &f.beta_p);
+    f.corr_p = f.wall_p = solid_jump(p, ap, sp, zs, -p.un, &f.beta_p);
   } else {
     f.corr_p = p.geff * p.h * (zs - zp);
   }
