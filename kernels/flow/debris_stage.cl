@@ -275,9 +275,9 @@ void debris_stage(__constant const FlowParams* p, __constant const DebrisParams*
   real dS[NSOLID] = {0, 0, 0, 0, 0, 0, 0, 0};
   real dhf = 0, dqf[2] = {0, 0}, out_s = 0, out_f = 0;
   real mass_s[2], mass_f[2], norm_s[2], norm_f[2], tang_s[2], tang_f[2], sc_flux[NSCALAR][2];
-  real beta_lo[2], beta_hi[2];  // blocked fractions of the column at the minus / plus face (solid_bed.cl)
+  Block blk_lo[2], blk_hi[2];  // what the minus / plus face can stop of the column (solid_bed.cl, point 4)
 #if DEBRIS_OBSTACLE
-  real beta_lo_dem[2], beta_hi_dem[2];  // the same over the DEM alone (the particles' share of the walls)
+  Block blk_lo_dem[2], blk_hi_dem[2];  // the same over the DEM alone (the particles' share of the walls)
 #endif
 #if DEBRIS_CURVATURE
   // The turn of the arriving solids (point 1), per direction: the momentum flux it changes (x, y) and
@@ -357,8 +357,8 @@ void debris_stage(__constant const FlowParams* p, __constant const DebrisParams*
     }
     const SolidFace Sm = solid_face(m_in, smL, 1, smR, kind_m, lock_m);
     const SolidFace Sp = solid_face(1, spL, p_in, spR, kind_p, lock_p);
-    beta_lo[dir] = Sm.beta_p;
-    beta_hi[dir] = Sp.beta_m;
+    blk_lo[dir] = Sm.blk_p;
+    blk_hi[dir] = Sp.blk_m;
 
     mass_f[dir] = Fp.fh - Fm.fh;
     // Fluid normal momentum: as the single-phase stage, over the bed b + h_s.
@@ -431,8 +431,8 @@ void debris_stage(__constant const FlowParams* p, __constant const DebrisParams*
       const SolidFace SmB = solid_face(m_in, dL, 1, dR, kind_m, lock_m);
       const SolidFace SpB = solid_face(1, eL, p_in, eR, kind_p, lock_p);
       react_s[dir] += mc.rho_s * ((Sp.corr_m - SpB.corr_m) - (Sm.corr_p - SmB.corr_p));
-      beta_lo_dem[dir] = SmB.beta_p;
-      beta_hi_dem[dir] = SpB.beta_m;
+      blk_lo_dem[dir] = SmB.blk_p;
+      blk_hi_dem[dir] = SpB.blk_m;
     }
 #endif
     norm_f[dir] = sf;
@@ -495,11 +495,11 @@ void debris_stage(__constant const FlowParams* p, __constant const DebrisParams*
   // Walls take the normal momentum of the columns they block (solid_bed.cl, point 4).
 #if DEBRIS_OBSTACLE
   // The wall reaction the particles give: what it takes beyond the DEM's walls alone.
-  const real wall_px = wall_reaction(qs[0], beta_lo_dem[0], beta_hi_dem[0]) - wall_reaction(qs[0], beta_lo[0], beta_hi[0]);
-  const real wall_py = wall_reaction(qs[1], beta_lo_dem[1], beta_hi_dem[1]) - wall_reaction(qs[1], beta_lo[1], beta_hi[1]);
+  const real wall_px = wall_reaction(qs[0], hsn, blk_lo_dem[0], blk_hi_dem[0]) - wall_reaction(qs[0], hsn, blk_lo[0], blk_hi[0]);
+  const real wall_py = wall_reaction(qs[1], hsn, blk_lo_dem[1], blk_hi_dem[1]) - wall_reaction(qs[1], hsn, blk_lo[1], blk_hi[1]);
 #endif
-  qs[0] = wall_reaction(qs[0], beta_lo[0], beta_hi[0]);
-  qs[1] = wall_reaction(qs[1], beta_lo[1], beta_hi[1]);
+  qs[0] = wall_reaction(qs[0], hsn, blk_lo[0], blk_hi[0]);
+  qs[1] = wall_reaction(qs[1], hsn, blk_lo[1], blk_hi[1]);
 
   // Stiff sources over ds: drag (with virtual mass), then basal friction of each phase.
   Material mn = mc;

@@ -52,10 +52,10 @@
 //    every such rise, and the runout and area grew with refinement (docs/terrain_comparison.md).
 //    Material at rest, subcritical or moving away keeps h* (a deposit beside a step stays exact).
 // 4. A column that meets a wall cannot move into it. The part of each side's column that a rise
-//    stops (fraction beta = d_b / h: what its kinetic energy cannot lift over the rise, rise_force;
-//    all of it at the domain wall) takes the normal
-//    reaction of the wall: after the stage its momentum into the face is removed (an inelastic,
-//    unilateral contact, applied implicitly like friction; moving away is free). This is the force
+//    stops (fraction d_b / h: what its kinetic energy cannot lift over the rise, blocked_fraction;
+//    all of it at the domain wall) takes the normal reaction of the wall: after the stage its
+//    momentum into the face is removed (an inelastic, unilateral contact, applied implicitly like
+//    friction: the speed that decides d_b is the one after the stage; moving away is free). This is the force
 //    that holds material pressed against a wall or a step by the slope, and that stops material
 //    flowing into an obstacle, which then piles up until it overtops the step.
 // 5. The bed only pushes (the curvature term's contact, debris_stage.cl). Over a stage the bed must
@@ -123,24 +123,44 @@ typedef struct {
 INLINE real side_pi(SolidSide s, real h) { return fmax((real)0, s.a * (h + s.hf) - s.c0); }
 INLINE real side_pressure(SolidSide s, real h) { return h * side_pi(s, h); }
 
-/// Force of a bed rise dz >= 0 at a face on the side s whose column (thickness h, h* above the face
-/// bed z*) moves into the face at u_in (points 3, 4): the column meets the rise over d = h - h* and
-/// pushes it with the material's own pressure, p(h) - p(h*) (independent of the motion, so a layer
-/// at rest beside a step is held exactly, for any K). Of that part of the column, what its kinetic
-/// energy cannot lift over the rise, d_b = clamp(dz - u_in^2 / (2 g_eff), 0, d) (the run-up height
-/// u^2 / 2g of material meeting an obstacle), is stopped by it: `beta` gets the blocked fraction
-/// d_b / h for the wall reaction. At rest all of it is stopped; fast flow over the small rises that
+/// The part of one side's column that a bed jump can stop (point 4): the column below the face bed,
+/// d = h - h* of the side's face thickness h, at a rise dz, with g_eff of its cell; at the domain
+/// wall the whole column. Which part of it is stopped depends on the speed at which the material
+/// meets the step, and that is decided after the stage (blocked_fraction), like friction.
+typedef struct {
+  real dz, d, h, geff;
+  int wall;
+} Block;
+
+/// Fraction of the column stopped by the jump of `b` for material whose velocity towards the face
+/// after the stage is u_in: what its kinetic energy cannot lift over the rise, d_b = clamp(dz -
+/// u_in^2 / (2 g_eff), 0, d) (the run-up height u^2 / 2g of material meeting an obstacle), over h.
+/// Material pressed against a step at rest is stopped whole; fast flow over the small rises that
 /// the reconstruction leaves in a smooth bend is not (removing a share rise/h of its momentum at
-/// every face of a bend cost 95 % of the run-up in the valley of test_terrain_forcing.cpp).
-INLINE real rise_force(SolidSide s, real hstar, real dz, real u_in, real* beta) {
-  const real d = s.h - hstar;
-  if (!(d > (real)0)) {
-    *beta = (real)0;
-    return (real)0;
-  }
+/// every face of a bend cost 95 % of the run-up in the valley of test_terrain_forcing.cpp). The
+/// speed is the one after the stage, not before it: a film at rest in front of a rise that the
+/// stage fills with fast material is not a wall to it (decided on the film's speed before the
+/// stage, it stopped every flow that ran into it until the flow was deeper than the rise).
+INLINE real blocked_fraction(Block b, real u_in) {
+  if (b.wall) return (real)1;
+  if (!(b.d > (real)0) || !(b.h > (real)0)) return (real)0;
   const real u = fmax(u_in, (real)0);
-  const real lift = s.geff > (real)0 ? u * u / ((real)2 * s.geff) : dz;
-  *beta = clamp(dz - lift, (real)0, d) / s.h;
+  const real lift = b.geff > (real)0 ? u * u / ((real)2 * b.geff) : b.dz;
+  return clamp(b.dz - lift, (real)0, b.d) / b.h;
+}
+
+/// Force of a bed rise dz >= 0 at a face on the side s whose column (thickness h, h* above the face
+/// bed z*) meets it (points 3, 4): the column meets the rise over d = h - h* and pushes it with the
+/// material's own pressure, p(h) - p(h*) (independent of the motion, so a layer at rest beside a
+/// step is held exactly, for any K). `blk` gets that part of the column (blocked_fraction).
+INLINE real rise_force(SolidSide s, real hstar, real dz, Block* blk) {
+  const real d = s.h - hstar;
+  blk->dz = dz;
+  blk->d = fmax(d, (real)0);
+  blk->h = s.h;
+  blk->geff = s.geff;
+  blk->wall = 0;
+  if (!(d > (real)0)) return (real)0;
   return side_pressure(s, s.h) - side_pressure(s, hstar);
 }
 
@@ -166,19 +186,16 @@ INLINE SolidApproach solid_approach(SolidSide s, real towards) {
   return a;
 }
 
-/// Thickness and normal velocity of side s at the face bed zs >= s.z. A supercritical arrival
-/// (a.w > 0) keeps its discharge q = h u and its energy per unit mass across the rise (steady,
+/// Thickness and normal velocity at the face bed zs > s.z of side s arriving supercritically
+/// (a.w > 0; solid_approach). It keeps its discharge q = h u and its energy per unit mass across the rise (steady,
 /// frictionless flow of the depth-averaged solids over a step: u^2 / 2 + G h + g_eff z constant,
 /// the momentum balance u u' + G h' + g_eff z' = 0 integrated with G frozen at the side's value,
 /// exact for a cohesionless dry layer): h' is the supercritical root of
 ///   q^2 / (2 h'^2) + G h' = e = w^2 / 2 + G h - g_eff (zs - z),
 /// between h and the critical thickness h_c = (q^2 / G)^(1/3); below the critical energy 3/2 G h_c
 /// the rise chokes the flow (critical state h' = 2 e / (3 G), u' = sqrt(G h')), e <= 0 stops it, and
-/// without lateral pressure (G = 0) h' = q / sqrt(2 e). Otherwise (rest, subcritical, moving away)
-/// Audusse's h* = h - (zs - z) with the velocity kept.
-INLINE real2 solid_face_state(SolidSide s, SolidApproach a, real zs) {
-  if (zs == s.z) return (real2)(s.h, s.un);  // no rise: the side's own state, bit for bit
-  if (!(a.w > (real)0)) return (real2)(clamp(s.h - (zs - s.z), (real)0, s.h), s.un);
+/// without lateral pressure (G = 0) h' = q / sqrt(2 e).
+INLINE real2 solid_bernoulli_state(SolidSide s, SolidApproach a, real zs) {
   // The energy left at zs, from the side's own thickness and the rise (exactly the approach's where
   // zs is the side's own face bed, exactly 0 where it is the side's head), as in bernoulli_state.
   const real e = zs == a.head ? (real)0 : (real)0.5 * a.w * a.w + a.G * s.h - s.geff * (zs - s.z);
@@ -205,20 +222,33 @@ INLINE real2 solid_face_state(SolidSide s, SolidApproach a, real zs) {
   return (real2)(x, copysign(q / x, s.un));
 }
 
+/// The face state of side s at zs: its own where zs is its face bed; the Bernoulli state of a
+/// supercritical arrival (solid_bernoulli_state) where that passes at least the discharge of the
+/// part of its column above the rise, h* u; otherwise h* = h - (zs - z) with the velocity kept, and
+/// a->w is set to 0 (the side is then treated as at rest by solid_jump). The part of a column that
+/// stands above a rise passes it whatever its energy: a slow arrival whose energy cannot lift the
+/// whole column (choked, or e <= 0; for material without lateral pressure, K = 0, every arrival
+/// counts as supercritical) still passes that part, as a resolved ramp it could not climb would let
+/// the top of a deep column flow on while its base stops.
+INLINE real2 solid_face_state(SolidSide s, SolidApproach* a, real zs) {
+  if (zs == s.z) return (real2)(s.h, s.un);  // no rise: the side's own state, bit for bit
+  const real2 hyd = (real2)(clamp(s.h - (zs - s.z), (real)0, s.h), s.un);
+  if (!(a->w > (real)0)) return hyd;
+  const real2 ber = solid_bernoulli_state(s, *a, zs);
+  if (ber.x * fabs(ber.y) >= hyd.x * fabs(hyd.y)) return ber;
+  a->w = (real)0;
+  return hyd;
+}
+
 /// Bed-jump force of side s at a rise to zs, with its face state `st` (solid_face_state): the
 /// material's pressure on the step, p(h) - p(h'), and for a supercritical arrival the momentum its
 /// flow loses climbing it, h u^2 - h' u'^2, so that the face flux of the state at zs plus this term
-/// is the side's own flux (a steady flow over the step stays steady). `beta` as in rise_force; a
-/// supercritical arrival that passes (or chokes) is not blocked, one whose energy cannot lift it
-/// over the rise is blocked by the run-up rule of rise_force over its whole column.
-INLINE real solid_jump(SolidSide s, SolidApproach a, real2 st, real zs, real u_in, real* beta) {
-  if (!(a.w > (real)0)) return rise_force(s, st.x, zs - s.z, u_in, beta);
-  if (st.x > (real)0) {
-    *beta = (real)0;
-  } else {
-    SolidSide whole = s;
-    rise_force(whole, (real)0, zs - s.z, u_in, beta);
-  }
+/// is the side's own flux (a steady flow over the step stays steady). `blk` as in rise_force; of a
+/// supercritical arrival nothing is blocked where it passes (or chokes), its whole column where its
+/// energy cannot lift it over the rise.
+INLINE real solid_jump(SolidSide s, SolidApproach a, real2 st, real zs, Block* blk) {
+  if (!(a.w > (real)0)) return rise_force(s, st.x, zs - s.z, blk);
+  rise_force(s, st.x > (real)0 ? s.h : (real)0, zs - s.z, blk);
   return side_pressure(s, s.h) - side_pressure(s, st.x) + s.h * s.un * s.un - st.x * st.y * st.y;
 }
 
@@ -226,14 +256,17 @@ typedef struct {
   real fh, fqn, fqt, p;  // mass, normal momentum (no pressure), tangential momentum, pressure flux
   real corr_m, corr_p;   // bed-jump corrections of the minus / plus side (added to their face flux)
   real wall_m, wall_p;   // the part of each side's correction that the neighbour's bed takes (rises)
-  real beta_m, beta_p;   // blocked fraction of each side's column (point 4)
+  Block blk_m, blk_p;    // the part of each side's column that its bed jump can stop (point 4)
 } SolidFace;
 
 /// The solid face between side m (minus) and side p (plus); conventions of face_between
 /// (riemann.cl) for outside sides (ghosts). `locked`: both cells static or empty, so no mass crosses
 /// and the sides touch at rest (point 6).
 INLINE SolidFace solid_face(int m_in, SolidSide m, int p_in, SolidSide p, int kind, int locked) {
-  SolidFace f = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+  SolidFace f;
+  f.fh = f.fqn = f.fqt = f.p = f.corr_m = f.corr_p = f.wall_m = f.wall_p = (real)0;
+  const Block none = {0, 0, 0, 0, 0};
+  f.blk_m = f.blk_p = none;
   if (!m_in && !p_in) return f;
   int wall = 0;
   if (!m_in) {
@@ -250,8 +283,9 @@ INLINE SolidFace solid_face(int m_in, SolidSide m, int p_in, SolidSide p, int ki
   const real zm = m.z, zp = p.z;
   const SolidApproach am = solid_approach(m, (real)1), ap = solid_approach(p, (real)-1);
   const real zs = fmin(fmax(zm, zp), fmin(am.head, ap.head));
-  const real2 sm = zs >= zm ? solid_face_state(m, am, zs) : (real2)(m.h, m.un);
-  const real2 sp = zs >= zp ? solid_face_state(p, ap, zs) : (real2)(p.h, p.un);
+  SolidApproach am_f = am, ap_f = ap;
+  const real2 sm = zs >= zm ? solid_face_state(m, &am_f, zs) : (real2)(m.h, m.un);
+  const real2 sp = zs >= zp ? solid_face_state(p, &ap_f, zs) : (real2)(p.h, p.un);
   const real hm = sm.x, hp = sp.x;
   if (hm > (real)0 || hp > (real)0) {
     const real pim = side_pi(m, hm), pip = side_pi(p, hp);
@@ -267,24 +301,26 @@ INLINE SolidFace solid_face(int m_in, SolidSide m, int p_in, SolidSide p, int ki
   // Bed jumps of each side (point 3): a drop is the fall, a rise takes the material's pressure
   // (and, arriving supercritically, the momentum the climb costs).
   if (zs >= zm) {
-    f.corr_m = f.wall_m = solid_jump(m, am, sm, zs, m.un, &f.beta_m);
+    f.corr_m = f.wall_m = solid_jump(m, am_f, sm, zs, &f.blk_m);
   } else {
     f.corr_m = m.geff * m.h * (zs - zm);
   }
   if (zs >= zp) {
-    f.corr_p = f.wall_p = solid_jump(p, ap, sp, zs, -p.un, &f.beta_p);
+    f.corr_p = f.wall_p = solid_jump(p, ap_f, sp, zs, &f.blk_p);
   } else {
     f.corr_p = p.geff * p.h * (zs - zp);
   }
-  if (wall) f.beta_m = f.beta_p = (real)1;
+  if (wall) f.blk_m.wall = f.blk_p.wall = 1;
   return f;
 }
 
-/// The wall reaction of point 4 on the normal momentum q of a cell whose minus face blocks the
-/// fraction beta_lo of its column and whose plus face blocks beta_hi.
-INLINE real wall_reaction(real q, real beta_lo, real beta_hi) {
-  if (q > (real)0) return q * ((real)1 - beta_hi);
-  if (q < (real)0) return q * ((real)1 - beta_lo);
+/// The wall reaction of point 4 on the normal momentum q of a cell of thickness h (both after the
+/// stage) whose minus face can block `lo` and whose plus face `hi`: the momentum into a face, less
+/// the share of the column that face stops at the cell's new speed.
+INLINE real wall_reaction(real q, real h, Block lo, Block hi) {
+  const real u = h > (real)0 ? fabs(q) / h : (real)0;
+  if (q > (real)0) return q * ((real)1 - blocked_fraction(hi, u));
+  if (q < (real)0) return q * ((real)1 - blocked_fraction(lo, u));
   return q;
 }
 

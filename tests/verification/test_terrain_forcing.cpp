@@ -93,6 +93,7 @@ struct RunUp {
   double highest = 0;  ///< highest centroid elevation on the counter-slope [m]
   double bead = 0;     ///< the bead's run-up from the release centroid [m]
   double gain = 0;     ///< max over steps of (E(t) - E(0)) / (largest potential energy released)
+  double low = 0;      ///< share of the volume on bed below Z0 / 5 when the centroid is highest
 };
 
 RunUp runValley(double a1, double a2, double mu, double kDx, bool curvature = true) {
@@ -152,6 +153,12 @@ RunUp runValley(double a1, double a2, double mu, double kDx, bool curvature = tr
     if (!climbing) return true;
     if (z > best) {
       best = z;
+      double below = 0, all = 0;
+      for (int i = 0; i < nx; ++i) {
+        all += hsNow[i];
+        if (in.bed[i] < 0.2 * kZ0) below += hsNow[i];
+      }
+      r.low = below / all;
       return true;
     }
     return z > best - 0.5;  // stop once the centroid is well on its way back down
@@ -163,12 +170,22 @@ RunUp runValley(double a1, double a2, double mu, double kDx, bool curvature = tr
 
 }  // namespace
 
-// Frictionless: the block climbs back to its release height. The loss is first order in the cell
-// size (numerical mixing of the block's momenta; measured deficits 4.6 %, 1.2 %, 0.4 % at 1, 0.5,
-// 0.25 m for 40 -> 20 deg, 1.2 % at 0.25 m for 20 -> 40 deg): asserted within 2 % (issue 13) at 0.25 m cells (20 cells per block), a
-// deficit that at least halves from 1 m to 0.5 m cells (first-order convergence to the bead), and
-// no gain at any resolution (the scheme cannot create energy; 1e-3 for round-off and the mass's
-// finite extent).
+// Frictionless: the block climbs back to its release height, and all of it leaves the valley.
+// Measured deficits (1, 0.5, 0.25 m cells): 40 -> 20 deg 1.1 / 0.53 / 0.28 %, 20 -> 40 deg 4.0 / 3.0 /
+// 2.0 %, 30 -> 30 deg 2.0 / 1.4 / 1.0 %, 35 -> 10 deg 0.86 / 0.40 / 0.20 %. What remains is the
+// numerical mixing of the block's momenta where the pressureless block (K = 0) compresses, most at
+// the apex of the steep counter-slope, where it piles into one or two cells (a delta shock of the
+// K = 0 equations); it falls with the cell but slower than first order. Asserted: within 2 % (issue
+// 13) at 0.25 m cells (20 cells per block), a deficit that falls by at least a fifth with each
+// halving of the cell, and no gain at any resolution (the scheme cannot create energy; 1e-3 for
+// round-off and the mass's finite extent).
+// Left behind: every bead has the energy to climb out of the valley, so when the centroid is highest
+// nothing may lie below Z0 / 5. Before the moving solids climbed the reconstruction's rises with
+// their energy (solid_bed.cl, point 3a) a film as thick as those rises stayed in the concave half
+// of the valley, holding its speed without moving: 3.6 / 0.83 / 0.22 % of the volume (40 -> 20 deg)
+// and 6.3 / 1.4 / 0.38 % (20 -> 40 deg) at 1 / 0.5 / 0.25 m, while the deficits above read
+// 4.6 / 1.2 / 0.4 % and 9.4 / 2.8 / 1.2 %. Now 1.1e-5 to 1.9e-5: films at the solver's dry threshold
+// (10^-6 m over the valley's 60 m is about 1.2e-5 of the block); asserted below 1e-4.
 TEST(TerrainForcing, FrictionlessMassClimbsBackToItsReleaseHeight) {
   const double pairs[][2] = {{40.0, 20.0}, {20.0, 40.0}, {30.0, 30.0}, {35.0, 10.0}};
   for (const auto& p : pairs) {
@@ -179,14 +196,16 @@ TEST(TerrainForcing, FrictionlessMassClimbsBackToItsReleaseHeight) {
       const double ratio = r.highest / r.release;
       deficit[c] = 1.0 - ratio;
       std::printf("[ valley %2.0f -> %2.0f deg, frictionless, dx %.2f m ] release %.2f m above the floor, run-up %.2f m: "
-                  "ratio %.4f (bead %.6f); largest mechanical-energy gain %.2e of the energy released\n",
-                  p[0], p[1], cells[c], r.release, r.highest, ratio, r.bead / r.release, r.gain);
+                  "ratio %.4f (bead %.6f); largest mechanical-energy gain %.2e of the energy released; "
+                  "left below %.0f m: %.2e of the volume\n",
+                  p[0], p[1], cells[c], r.release, r.highest, ratio, r.bead / r.release, r.gain, 0.2 * kZ0, r.low);
       // The mechanical energy of the diagnostics (kinetic, vertical kinetic from the cell's bed slope,
       // potential) grows by at most a second-order discretisation error of those sums (measured
       // 1.0e-3, 2.3e-4, 6e-5 of the released energy at 1, 0.5, 0.25 m for 40 -> 20 deg): 2e-3.
       EXPECT_LE(r.gain, 2e-3) << "the mechanical energy may not grow";
       EXPECT_NEAR(r.bead / r.release, 1.0, 1e-4) << "the reference bead conserves energy";
       EXPECT_LE(ratio, 1.0 + 1e-3) << "no energy may be created";
+      EXPECT_LT(r.low, 1e-4) << "material left in the valley although it has the energy to climb out";
     }
     EXPECT_LE(deficit[2], 0.02) << p[0] << " -> " << p[1] << " deg";
     if (p[0] == 40.0) {
@@ -196,7 +215,8 @@ TEST(TerrainForcing, FrictionlessMassClimbsBackToItsReleaseHeight) {
       std::printf("[ valley 40 -> 20 deg, frictionless, dx 0.50 m, curvature off ] ratio %.4f\n", off.highest / off.release);
       EXPECT_LT(off.highest / off.release, 0.8);
     }
-    EXPECT_LE(deficit[1], 0.5 * deficit[0]) << "first-order convergence";
+    EXPECT_LE(deficit[1], 0.8 * deficit[0]) << "the deficit falls with the cell";
+    EXPECT_LE(deficit[2], 0.8 * deficit[1]) << "the deficit falls with the cell";
   }
 }
 
