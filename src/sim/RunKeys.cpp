@@ -195,7 +195,7 @@ void addFlowKeys(KeyRegistry& r) {
       << flag("Curvature Acceleration", "1",
               "solids and particles: the bed turns the material onto its tangent plane along its path, and the "
               "turn's normal force adds to friction where the bed presses; material thrown off a convex edge "
-              "lifts off and lands (run-up in smooth valleys within 1.2 %; 0: the plane's g cos^2(theta) only)")
+              "lifts off and lands (run-up in smooth valleys within 2 %; 0: the plane's g cos^2(theta) only)")
       << choice("Depth Pressure", {"cos2", "cos4"}, "cos2",
                 "depth-pressure gravity g_p = g cos^2(theta) (lake at rest exact) or g cos^4(theta)");
 }
