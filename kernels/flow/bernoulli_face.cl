@@ -55,17 +55,13 @@ INLINE Approach side_approach(real h, real e, real un, real towards, real g) {
   return a;
 }
 
-/// (h', u') at the face bed zs >= z = e - h for a side (h, e, un) arriving supercritically (a.w > 0,
-/// see above); otherwise Audusse's (e - zs, un).
-INLINE real2 bernoulli_state(real h, real e, real un, Approach a, real g, real zs) {
-  if (!(a.w > (real)0) || !(h > (real)0))
-    return (real2)(fmax((real)0, e - zs), un);
-  // Specific energy left at z*, from the side's own thickness and the rise zs - (e - h): not from
-  // the absolute surface and face bed, whose difference carries the rounding of the elevation
-  // (1e-4 m in float at 2000 m), which the root amplifies by 1 / (Fr^2 - 1) near Froude 1. Where
-  // z* is the side's own face bed the rise is 0 bit for bit (z* is one of the values it is the
-  // min/max of); where it is the side's own head (the cap) nothing is left, exactly.
-  const real es = zs == a.head ? (real)0 : h + a.w * a.w / ((real)2 * g) - (zs - (e - h));
+/// The state (h', u') that steady frictionless flow of depth h and normal velocity un reaches where
+/// its specific energy is `es` (h' + q^2 / (2 g h'^2) = es, q = h un), on the supercritical branch:
+/// es <= 0 blocks it (0, 0); below the critical energy 3/2 h_c, h_c = (q^2 / g)^(1/3), the critical
+/// state h' = 2/3 es, u' = sqrt(g h') (the largest discharge the energy passes); otherwise the root
+/// between h and h_c. `g` is the gravity of the pressure g h^2 / 2 (the water's g, or the solids'
+/// pressure gravity G of solid_bed.cl). Shared by the water's and the solids' faces.
+INLINE real2 supercritical_state(real h, real un, real es, real g) {
   if (!(es > (real)0)) return (real2)((real)0, (real)0);
   const real q2 = h * h * un * un;
   const real hc = cbrt(q2 / g);
@@ -87,6 +83,20 @@ INLINE real2 bernoulli_state(real h, real e, real un, Approach a, real g, real z
     if (done) break;
   }
   return (real2)(x, h * un / x);
+}
+
+/// (h', u') at the face bed zs >= z = e - h for a side (h, e, un) arriving supercritically (a.w > 0,
+/// see above); otherwise Audusse's (e - zs, un).
+INLINE real2 bernoulli_state(real h, real e, real un, Approach a, real g, real zs) {
+  if (!(a.w > (real)0) || !(h > (real)0))
+    return (real2)(fmax((real)0, e - zs), un);
+  // Specific energy left at z*, from the side's own thickness and the rise zs - (e - h): not from
+  // the absolute surface and face bed, whose difference carries the rounding of the elevation
+  // (1e-4 m in float at 2000 m), which the root amplifies by 1 / (Fr^2 - 1) near Froude 1. Where
+  // z* is the side's own face bed the rise is 0 bit for bit (z* is one of the values it is the
+  // min/max of); where it is the side's own head (the cap) nothing is left, exactly.
+  const real es = zs == a.head ? (real)0 : h + a.w * a.w / ((real)2 * g) - (zs - (e - h));
+  return supercritical_state(h, un, es, g);
 }
 
 /// Bed-jump momentum term of a side re-measured from z*, without the factor g: the difference of its

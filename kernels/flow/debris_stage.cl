@@ -493,13 +493,14 @@ void debris_stage(__constant const FlowParams* p, __constant const DebrisParams*
                 hsn * solid_velocity(hsn, Sn[2], p->h_dry, dp->film_h)};
   if (hfn <= p->h_dry) qf[0] = qf[1] = 0;
   // Walls take the normal momentum of the columns they block (solid_bed.cl, point 4).
+  const real qs_walled[2] = {wall_reaction(qs[0], hsn, blk_lo[0], blk_hi[0]), wall_reaction(qs[1], hsn, blk_lo[1], blk_hi[1])};
 #if DEBRIS_OBSTACLE
   // The wall reaction the particles give: what it takes beyond the DEM's walls alone.
-  const real wall_px = wall_reaction(qs[0], hsn, blk_lo_dem[0], blk_hi_dem[0]) - wall_reaction(qs[0], hsn, blk_lo[0], blk_hi[0]);
-  const real wall_py = wall_reaction(qs[1], hsn, blk_lo_dem[1], blk_hi_dem[1]) - wall_reaction(qs[1], hsn, blk_lo[1], blk_hi[1]);
+  const real wall_px = wall_reaction(qs[0], hsn, blk_lo_dem[0], blk_hi_dem[0]) - qs_walled[0];
+  const real wall_py = wall_reaction(qs[1], hsn, blk_lo_dem[1], blk_hi_dem[1]) - qs_walled[1];
 #endif
-  qs[0] = wall_reaction(qs[0], hsn, blk_lo[0], blk_hi[0]);
-  qs[1] = wall_reaction(qs[1], hsn, blk_lo[1], blk_hi[1]);
+  qs[0] = qs_walled[0];
+  qs[1] = qs_walled[1];
 
   // Stiff sources over ds: drag (with virtual mass), then basal friction of each phase.
   Material mn = mc;

@@ -200,26 +200,9 @@ INLINE real2 solid_bernoulli_state(SolidSide s, SolidApproach a, real zs) {
   // zs is the side's own face bed, exactly 0 where it is the side's head), as in bernoulli_state.
   const real e = zs == a.head ? (real)0 : (real)0.5 * a.w * a.w + a.G * s.h - s.geff * (zs - s.z);
   if (!(e > (real)0)) return (real2)((real)0, (real)0);
-  const real q = s.h * a.w;
-  if (!(a.G > (real)0)) return (real2)(q / sqrt((real)2 * e), copysign(sqrt((real)2 * e), s.un));
-  const real hc = cbrt(q * q / a.G);
-  if (e <= (real)1.5 * a.G * hc) {
-    const real hs = e * (real)(2.0 / 3.0) / a.G;
-    return (real2)(hs, copysign(fmin(a.w, sqrt(a.G * hs)), s.un));
-  }
-  // Newton from h on f(x) = q^2 / (2 x^2) + G x - e, convex and decreasing below h_c with f(h) >= 0:
-  // the iterates rise monotonically to the root.
-  real x = s.h;
-  for (int it = 0; it < 24; ++it) {
-    const real slope = a.G - q * q / (x * x * x);
-    if (!(slope < (real)0)) break;
-    const real next = x - ((real)0.5 * q * q / (x * x) + a.G * x - e) / slope;
-    const real kept = fmin(next, hc);
-    const int done = fabs(kept - x) <= (real)4 * REAL_EPS * x;
-    x = kept;
-    if (done) break;
-  }
-  return (real2)(x, copysign(q / x, s.un));
+  if (!(a.G > (real)0)) return (real2)(s.h * a.w / sqrt((real)2 * e), copysign(sqrt((real)2 * e), s.un));
+  // The water's relation with g = G: h' + q^2 / (2 G h'^2) = e / G (bernoulli_face.cl).
+  return supercritical_state(s.h, s.un, e / a.G, a.G);
 }
 
 /// The face state of side s at zs: its own where zs is its face bed; the Bernoulli state of a

@@ -184,4 +184,16 @@ double cellAverage1D(const std::function<double(double)>& f, double xc, double d
   return sum * 0.5 / kSub;
 }
 
+double supercriticalThicknessBehindRise(double h, double u, double dz, double pg, double g) {
+  const double q2 = h * h * u * u, hc = std::cbrt(q2 / pg), e = 0.5 * u * u + pg * h - g * dz;
+  if (!(u * u > pg * h) || !(e > 1.5 * pg * hc))
+    throw std::invalid_argument("supercriticalThicknessBehindRise: the flow is not supercritical or chokes");
+  double a = h, b = hc;  // f(a) >= 0 > f(b) for f(x) = q^2 / (2 x^2) + pg x - e
+  for (int it = 0; it < 200; ++it) {
+    const double mid = 0.5 * (a + b);
+    (0.5 * q2 / (mid * mid) + pg * mid - e > 0 ? a : b) = mid;
+  }
+  return 0.5 * (a + b);
+}
+
 }  // namespace talus::analytic

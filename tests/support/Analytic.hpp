@@ -102,4 +102,11 @@ double observedOrder(double eCoarse, double eFine, double ratio);
 /// solution into finite-volume cell averages, which matters at fronts and shocks.
 double cellAverage1D(const std::function<double(double)>& f, double xc, double dx);
 
+/// Thickness behind a rise dz of steady frictionless flow (thickness h, speed u) whose pressure is
+/// pg h^2 / 2 and which climbs against the bed's gravity g: the supercritical root of
+/// q^2 / (2 x^2) + pg x = u^2 / 2 + pg h - g dz (Bernoulli; water: pg = g; a granular layer with
+/// earth-pressure coefficient K: pg = K g), by bisection between h and the critical thickness
+/// (q^2 / pg)^(1/3). Throws std::invalid_argument if the flow is not supercritical or chokes.
+double supercriticalThicknessBehindRise(double h, double u, double dz, double pg, double g);
+
 }  // namespace talus::analytic

@@ -34,6 +34,7 @@
 
 #include "core/Constants.hpp"
 #include "flow/FlowSettings.hpp"
+#include "support/Analytic.hpp"
 #include "support/FlowScene.hpp"
 
 namespace fl = talus::flow;
@@ -44,17 +45,9 @@ constexpr double kStepAt = 150.0, kLength = 250.0, kDx = 1.0, kEnd = 8.0;
 constexpr double kWindow0 = 100.0, kWindow1 = 240.0;
 
 /// Depth behind a rise dz of water with depth h and speed u (Bernoulli, on the approaching flow's
-/// branch), by bisection between h and the critical depth; the test's own root finder.
+/// branch; the support library's bisection, independent of the kernels' Newton).
 double depthBehindRise(double h, double u, double dz) {
-  const double g = talus::kGravity, q2 = h * h * u * u;
-  const double hc = std::cbrt(q2 / g), es = h + u * u / (2 * g) - dz;
-  EXPECT_GT(es, 1.5 * hc) << "the scene must not choke";
-  double a = h, b = hc;  // f(a) >= 0 > f(b) for f(x) = x + q^2 / (2 g x^2) - es
-  for (int it = 0; it < 200; ++it) {
-    const double mid = 0.5 * (a + b);
-    (mid + q2 / (2 * g * mid * mid) - es > 0 ? a : b) = mid;
-  }
-  return 0.5 * (a + b);
+  return talus::analytic::supercriticalThicknessBehindRise(h, u, dz, talus::kGravity, talus::kGravity);
 }
 
 struct StepError {

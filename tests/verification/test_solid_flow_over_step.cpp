@@ -31,6 +31,7 @@
 
 #include "core/Constants.hpp"
 #include "flow/FlowSolver.hpp"
+#include "support/Analytic.hpp"
 #include "support/DebrisScene.hpp"
 #include "support/TestDevice.hpp"
 
@@ -42,18 +43,10 @@ namespace {
 constexpr double kStepAt = 150.0, kLength = 250.0, kDx = 1.0, kEnd = 8.0;
 constexpr double kWindow0 = 100.0, kWindow1 = 240.0;
 
-/// Thickness behind a rise dz of a layer (h, u) with pressure gravity G = K g, on the supercritical
-/// branch, by bisection between h and the critical thickness: the test's own root finder.
+/// Thickness behind a rise dz of a dry layer (h, u) with pressure gravity K g (Bernoulli, on the
+/// supercritical branch; the support library's bisection, independent of the kernels' Newton).
 double thicknessBehindRise(double h, double u, double dz, double k) {
-  const double g = kGravity, G = k * g, q2 = h * h * u * u;
-  const double hc = std::cbrt(q2 / G), e = 0.5 * u * u + G * h - g * dz;
-  EXPECT_GT(e, 1.5 * G * hc) << "the scene must not choke";
-  double a = h, b = hc;  // f(a) >= 0 > f(b) for f(x) = q^2 / (2 x^2) + G x - e
-  for (int it = 0; it < 200; ++it) {
-    const double mid = 0.5 * (a + b);
-    (0.5 * q2 / (mid * mid) + G * mid - e > 0 ? a : b) = mid;
-  }
-  return 0.5 * (a + b);
+  return analytic::supercriticalThicknessBehindRise(h, u, dz, k * kGravity, kGravity);
 }
 
 struct StepError {
