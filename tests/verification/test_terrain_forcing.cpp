@@ -31,6 +31,7 @@
 #include "particles/ParticleSolver.hpp"
 #include "support/DebrisScene.hpp"
 #include "support/TestDevice.hpp"
+#include "support/ValleyBead.hpp"
 
 using namespace talus;
 namespace fl = talus::flow;
@@ -40,53 +41,15 @@ namespace {
 constexpr double kDeg = 3.14159265358979323846 / 180.0;
 constexpr double kW = 60.0, kZ0 = 50.0, kBlockL = 5.0, kBlockH = 1.0;
 
-/// The valley profile: slope s1 = tan(alpha_1) down to x_a, the transition to s2 = tan(alpha_2) over
-/// [x_a, x_a + W], the counter-slope beyond; b = 0 at the floor (where b' = 0).
-struct Valley {
-  double s1, s2, xa, xf, length;
-  Valley(double a1, double a2) : s1(std::tan(a1 * kDeg)), s2(std::tan(a2 * kDeg)) {
-    xa = kZ0 / s1 + 10.0;                       // release on the straight slope, 10 m of margin
-    xf = xa + kW * s1 / (s1 + s2);              // floor: b' = 0
-    length = xa + kW + 1.3 * kZ0 / s2 + 10.0;   // room for the climb
-  }
-  double slope(double x) const {
-    if (x < xa) return -s1;
-    if (x > xa + kW) return s2;
-    return -s1 + (s1 + s2) * (x - xa) / kW;
-  }
-  double curvature(double x) const { return x > xa && x < xa + kW ? (s1 + s2) / kW : 0.0; }
-  double bed(double x) const {
-    // b(x) = integral of the slope from the floor.
-    auto prim = [&](double u) {  // antiderivative of slope, continuous
-      if (u <= xa) return -s1 * (u - xa);
-      if (u <= xa + kW) return -s1 * (u - xa) + 0.5 * (s1 + s2) * (u - xa) * (u - xa) / kW;
-      return -s1 * kW + 0.5 * (s1 + s2) * kW + s2 * (u - xa - kW);
-    };
-    return prim(x) - prim(xf);
-  }
-};
+/// The valley of the header: W = 60 m, release Z0 = 50 m above the floor, 10 m of bed above it.
+test::Valley valley(double a1, double a2) { return test::Valley(a1, a2, kW, kZ0, 10.0); }
+
+/// Domain length: room for the climb up the counter-slope.
+double valleyLength(const test::Valley& v) { return v.xa + kW + 1.3 * kZ0 / v.s2 + 10.0; }
 
 /// Highest elevation above the floor that a bead released at rest at x0 reaches on the
-/// counter-slope (first turning point), with friction coefficient mu (RK4, dt 1e-4 s).
-double beadRunUp(const Valley& v, double x0, double mu) {
-  double x = x0, u = 0;
-  auto acc = [&](double xx, double uu) {
-    const double bp = v.slope(xx), lambda = std::max(0.0, (kGravity + v.curvature(xx) * uu * uu) / (1 + bp * bp));
-    return -lambda * (bp + mu * (uu > 0 ? 1.0 : uu < 0 ? -1.0 : 0.0));
-  };
-  const double dt = 1e-4;
-  for (int n = 0; n < 10000000; ++n) {
-    const double k1x = u, k1u = acc(x, u);
-    const double k2x = u + 0.5 * dt * k1u, k2u = acc(x + 0.5 * dt * k1x, u + 0.5 * dt * k1u);
-    const double k3x = u + 0.5 * dt * k2u, k3u = acc(x + 0.5 * dt * k2x, u + 0.5 * dt * k2u);
-    const double k4x = u + dt * k3u, k4u = acc(x + dt * k3x, u + dt * k3u);
-    const double xn = x + dt / 6 * (k1x + 2 * k2x + 2 * k3x + k4x), un = u + dt / 6 * (k1u + 2 * k2u + 2 * k3u + k4u);
-    if (n > 10 && un <= 0) return v.bed(xn);
-    x = xn;
-    u = un;
-  }
-  return v.bed(x);
-}
+/// counter-slope (its first turning point), with friction coefficient mu.
+double beadRunUp(const test::Valley& v, double x0, double mu) { return v.bed(test::beadTurningPoint(v, x0, mu)); }
 
 struct RunUp {
   double release = 0;  ///< centroid elevation of the release above the floor [m]
@@ -97,8 +60,8 @@ struct RunUp {
 };
 
 RunUp runValley(double a1, double a2, double mu, double kDx, bool curvature = true) {
-  const Valley v(a1, a2);
-  const int nx = static_cast<int>(std::ceil(v.length / kDx));
+  const test::Valley v = valley(a1, a2);
+  const int nx = static_cast<int>(std::ceil(valleyLength(v) / kDx));
   const Grid grid = Grid::make(nx, 1, kDx);
   test::SolidMaterial mat;
   mat.phi = mat.delta = std::atan(mu);
@@ -249,9 +212,9 @@ TEST(TerrainForcing, CoulombMassTurnsWhereTheBeadDoes) {
 TEST(TerrainForcing, ParticleBlockClimbsBackToItsReleaseHeight) {
   const double pairs[][2] = {{40.0, 20.0}, {20.0, 40.0}};
   for (const auto& pr : pairs) {
-    const Valley v(pr[0], pr[1]);
+    const test::Valley v = valley(pr[0], pr[1]);
     const double dx = 1.0;
-    const int nx = static_cast<int>(std::ceil(v.length / dx)), ny = 5;
+    const int nx = static_cast<int>(std::ceil(valleyLength(v) / dx)), ny = 5;
     const Grid grid = Grid::make(nx, ny, dx);
     particles::ParticleTerrain terrain;
     terrain.curvature = true;
