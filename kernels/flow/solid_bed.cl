@@ -262,9 +262,14 @@ INLINE SolidFace solid_face(int m_in, SolidSide m, int p_in, SolidSide p, int ki
     p.un = wall ? -m.un : m.un;
   }
   // z* capped by the height each column reaches (its surface, or its head where it arrives
-  // supercritically, point 3a); a side whose face bed is z* keeps its thickness bitwise.
+  // supercritically, point 3a); a side whose face bed is z* keeps its thickness bitwise. Only the
+  // lower side can meet a rise: the higher one's head lies above its own face bed, which is then
+  // z*, so its approach is not needed (nor evaluated: `still`, a side at rest, gives the same z*
+  // and the same face, bit for bit).
   const real zm = m.z, zp = p.z;
-  const SolidApproach am = solid_approach(m, (real)1), ap = solid_approach(p, (real)-1);
+  const SolidApproach still = {0, 0, INFINITY};
+  const SolidApproach am = zm < zp ? solid_approach(m, (real)1) : still;
+  const SolidApproach ap = zp < zm ? solid_approach(p, (real)-1) : still;
   const real zs = fmin(fmax(zm, zp), fmin(am.head, ap.head));
   SolidApproach am_f = am, ap_f = ap;
   const real2 sm = zs >= zm ? solid_face_state(m, &am_f, zs) : (real2)(m.h, m.un);
