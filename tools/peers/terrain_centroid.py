@@ -14,7 +14,9 @@ slides without curvature effects tan(alpha) is mu (the energy line); the bend's 
 friction adds to it. Travel: along the coordinate of --along (valley_scene.py's along.tif), or the
 horizontal distance between the centroids. Also the runout of the final deposit (largest s of a
 cell with slope-normal thickness > 0.1 m, s along --along or along the flow direction of
---direction-from's CASE measured from the release centroid) and the peak speed (vsmax / pfv).
+--direction-from's CASE measured from the release centroid), the affected area (planimetric, peak
+slope-normal thickness > 0.1 m: hsmax cos(theta) / pft) and the peak speed (vsmax, Talus'
+horizontal speed / pfv, com1DFA's speed along the bed).
 --reference: a travel to compare with (e.g. the bead's, 690.4 m on the valley scene).
 Run with the AvaFrame virtual environment's python (numpy, rasterio).
 """
@@ -55,10 +57,10 @@ def main():
         S = (X - c0[0]) * d[0] + (Y - c0[1]) * d[1]
     else:
         sys.exit("terrain_centroid.py: give --along or --direction-from")
-    print("| run | centroid drop [m] | centroid travel [m] | tan(alpha) | runout of the deposit [m] | peak speed [m/s] |")
-    print("|---|---|---|---|---|---|")
+    print("| run | centroid drop [m] | centroid travel [m] | tan(alpha) | runout of the deposit [m] | affected area > 0.1 m [m²] | peak speed [m/s] |")
+    print("|---|---|---|---|---|---|---|")
     for run in a.runs:
-        label, spec = run.split("=", 1)
+        label, spec = run.rsplit("=", 1)  # labels may hold "=" (run-file keys)
         kind, dem_path, folder = spec.split(":", 2)
         dem = read(dem_path)[0]
         cos = slope_cos(dem, cell)
@@ -66,9 +68,11 @@ def main():
             hv = zero_nan(read(f"{folder}/hsfinal.tif")[0])
             v = zero_nan(read(f"{folder}/vsmax.tif")[0])
             hn = hv * cos
+            peak = zero_nan(read(f"{folder}/hsmax.tif")[0]) * zero_nan(cos)
         elif kind == "com1dfa":
             hn = zero_nan(read(first(f"{folder}/Outputs/com1DFA/peakFiles/*_FT.tif"))[0])
             v = zero_nan(read(first(f"{folder}/Outputs/com1DFA/peakFiles/*_pfv.tif"))[0])
+            peak = zero_nan(read(first(f"{folder}/Outputs/com1DFA/peakFiles/*_pft.tif"))[0])
             hv = hn / np.maximum(zero_nan(cos), 1e-6)
         else:
             sys.exit(f"terrain_centroid.py: unknown kind '{kind}' in {run}")
@@ -80,8 +84,9 @@ def main():
             c = np.array([(hv * X).sum(), (hv * Y).sum()]) / hv.sum()
             travel = float(np.hypot(*(c - c0)))
         ref = f" ({travel / a.reference - 1:+.1%})" if a.reference else ""
+        area = f"{(peak > 0.1).sum() * cell * cell:,.0f}".replace(",", " ")
         runout = S[hn > 0.1].max() - (0.0 if not a.along else (rel * S).sum() / rel.sum())
-        print(f"| {label} | {drop:.1f} | {travel:.1f}{ref} | {drop / travel:.3f} | {runout:.0f} | {v.max():.1f} |")
+        print(f"| {label} | {drop:.1f} | {travel:.1f}{ref} | {drop / travel:.3f} | {runout:.0f} | {area} | {v.max():.1f} |")
 
 
 if __name__ == "__main__":
