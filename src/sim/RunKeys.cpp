@@ -176,7 +176,9 @@ void addTimeKeys(KeyRegistry& r) {
       << lisem("1", integer("Report every", "1", "-", 1, 1e9, "report maps and progress every this many Timesteps"))
       << real("Stop At Rest Fraction", "0", "-", 0, 0.99,
               "end the run once the kinetic energy (grid phases and particles) has fallen below this fraction "
-              "of its peak, as com1DFA's stopCrit; 0: run to End Time");
+              "of its peak, as com1DFA's stopCrit; 0: run to End Time. Thin films that still drain carry "
+              "little kinetic energy: with Voellmy friction a run can end with them on steep slopes "
+              "(docs/voellmy_comparison.md)");
   r.addRule({"Particle Fractional Dimension", "Particle Volume"}, [](const io::RunConfig& c) -> std::string {
     if (c.real("Particle Fractional Dimension") == 0 || c.real("Particle Volume") == 0) return "";
     return "give either Particle Fractional Dimension (a fraction of dx^3) or Particle Volume (m^3), not both";
