@@ -55,7 +55,7 @@ double beadTurningPoint(const Valley& v, double x0, double mu, double dt) {
     const double k4x = u + dt * k3u, k4u = acc(x + dt * k3x, u + dt * k3u);
     const double xn = x + dt / 6 * (k1x + 2 * k2x + 2 * k3x + k4x);
     const double un = u + dt / 6 * (k1u + 2 * k2u + 2 * k3u + k4u);
-    if (n > 10 && un <= 0) return xn;
+    if (un <= 0) return n == 0 ? x0 : xn;  // turned, or held by friction from the start
     x = xn;
     u = un;
   }

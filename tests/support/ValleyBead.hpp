@@ -29,8 +29,8 @@ struct Valley {
   double bed(double x) const;        ///< b(x), 0 at the floor
 };
 
-/// Where a bead released at rest at x0 first turns (or stops): integrated by RK4 with step dt
-/// [s] until its velocity changes sign. Throws std::runtime_error if it has not turned within
+/// Where a bead released at rest at x0 first turns (or stops; x0 where friction holds it): integrated
+/// by RK4 with step dt [s] until its velocity changes sign. Throws std::runtime_error if it has not turned within
 /// 10^7 steps.
 double beadTurningPoint(const Valley& v, double x0, double mu, double dt = 1e-4);
 

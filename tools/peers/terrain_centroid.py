@@ -32,10 +32,6 @@ sys.path.insert(0, str(HERE))
 from terrain_compare import first, read, slope_cos  # noqa: E402
 
 
-def zero_nan(a):
-    return np.where(np.isfinite(a), a, 0.0)
-
-
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--release", required=True)
@@ -45,13 +41,13 @@ def main():
     ap.add_argument("runs", nargs="+")
     a = ap.parse_args()
     rel, _, tr = read(a.release)
-    rel = zero_nan(rel)
+    rel = np.nan_to_num(rel)
     ny, nx = rel.shape
     X, Y = np.meshgrid(tr.c + tr.a * (np.arange(nx) + 0.5), tr.f + tr.e * (np.arange(ny) + 0.5))
     cell = abs(tr.a)
     c0 = np.array([(rel * X).sum(), (rel * Y).sum()]) / rel.sum()
     if a.along:
-        S = zero_nan(read(a.along)[0])
+        S = np.nan_to_num(read(a.along)[0])
     elif a.direction_from:
         d = json.loads(pathlib.Path(a.direction_from[0]).read_text())[a.direction_from[1]]["direction"]
         S = (X - c0[0]) * d[0] + (Y - c0[1]) * d[1]
@@ -65,18 +61,18 @@ def main():
         dem = read(dem_path)[0]
         cos = slope_cos(dem, cell)
         if kind == "talus":
-            hv = zero_nan(read(f"{folder}/hsfinal.tif")[0])
-            v = zero_nan(read(f"{folder}/vsmax.tif")[0])
+            hv = np.nan_to_num(read(f"{folder}/hsfinal.tif")[0])
+            v = np.nan_to_num(read(f"{folder}/vsmax.tif")[0])
             hn = hv * cos
-            peak = zero_nan(read(f"{folder}/hsmax.tif")[0]) * zero_nan(cos)
+            peak = np.nan_to_num(read(f"{folder}/hsmax.tif")[0]) * np.nan_to_num(cos)
         elif kind == "com1dfa":
-            hn = zero_nan(read(first(f"{folder}/Outputs/com1DFA/peakFiles/*_FT.tif"))[0])
-            v = zero_nan(read(first(f"{folder}/Outputs/com1DFA/peakFiles/*_pfv.tif"))[0])
-            peak = zero_nan(read(first(f"{folder}/Outputs/com1DFA/peakFiles/*_pft.tif"))[0])
-            hv = hn / np.maximum(zero_nan(cos), 1e-6)
+            hn = np.nan_to_num(read(first(f"{folder}/Outputs/com1DFA/peakFiles/*_FT.tif"))[0])
+            v = np.nan_to_num(read(first(f"{folder}/Outputs/com1DFA/peakFiles/*_pfv.tif"))[0])
+            peak = np.nan_to_num(read(first(f"{folder}/Outputs/com1DFA/peakFiles/*_pft.tif"))[0])
+            hv = hn / np.maximum(np.nan_to_num(cos), 1e-6)
         else:
             sys.exit(f"terrain_centroid.py: unknown kind '{kind}' in {run}")
-        z = zero_nan(dem)
+        z = np.nan_to_num(dem)
         drop = (rel * z).sum() / rel.sum() - (hv * z).sum() / hv.sum()
         if a.along:
             travel = (hv * S).sum() / hv.sum() - (rel * S).sum() / rel.sum()

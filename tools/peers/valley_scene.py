@@ -9,7 +9,7 @@ there, tests/support/ValleyBead.hpp), 5 m cells, a disc release of radius 34 m w
 400 m above the floor. Writes OUT_DIR/dem.tif, release.tif (slope-normal thickness 1.5 m, what
 com1DFA reads), solids_vertical.tif (h_n / cos(theta), what Talus reads; same volume), along.tif (s
 of each cell centre, for terrain_centroid.py) and case.run (Talus: dry granular, Coulomb
-delta = 25 deg, K = 1, cos^4, as tools/peers/terrain_compare.py prep writes for the terrain cases).
+delta = 25 deg, K = 1, cos^4: terrain_compare.py's solids_runfile, as for the terrain cases).
 Run both codes on it with
     talus run case.run --out out --precision double --set "Stop At Rest Fraction=0.01"
     /work/avaframe-venv/bin/python tools/peers/terrain_avaframe_run.py OUT_DIR WORK_DIR
@@ -20,11 +20,15 @@ Run with a python that has numpy and rasterio (e.g. the AvaFrame virtual environ
 """
 import argparse
 import pathlib
+import sys
 
 import numpy as np
 import rasterio
 from rasterio.crs import CRS
 from rasterio.transform import from_origin
+
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
+from terrain_compare import slope_cos, solids_runfile  # noqa: E402
 
 ALPHA1, W, Z0, MARGIN = 40.0, 100.0, 400.0, 100.0
 DX, LENGTH, HALF_WIDTH, RADIUS, H_NORMAL = 5.0, 1050.0, 200.0, 34.0, 1.5
@@ -60,26 +64,16 @@ def main():
     s_release = xa - (Z0 - 0.5 * s1 * W) / s1  # where the straight slope is Z0 above the floor
     dem = b + 100.0
     hn = np.where(np.hypot(S - s_release, C) < RADIUS, H_NORMAL, 0.0)
-    gy, gx = np.gradient(dem, DX)
-    cos = 1.0 / np.sqrt(1.0 + gx * gx + gy * gy)
+    cos = slope_cos(dem, DX)
     crs = CRS.from_epsg(31287)  # any metric CRS; com1DFA wants one
     tr = from_origin(600000.0 + px.min(), 5200000.0 + py.max(), DX, DX)
     for name, arr in (("dem", dem), ("release", hn), ("solids_vertical", hn / cos), ("along", S)):
         with rasterio.open(a.out / f"{name}.tif", "w", driver="GTiff", height=ny, width=nx, count=1,
                            dtype="float64", crs=crs, transform=tr, nodata=-9999.0) as ds:
             ds.write(arr, 1)
-    delta = np.radians(25.0)
-    (a.out / "case.run").write_text(
-        "[Talus run file]\n"
-        f"# Curved valley at {a.angle_deg:g} deg to the grid (tools/peers/valley_scene.py).\n"
-        "[Input]\nMap Directory=.\nDEM=dem.tif\nInclude Initial Water=0\n"
-        "[Solids]\nInclude Initial Solids=1\nInitial Solid Height=solids_vertical.tif\n"
-        f"Initial Solid IFA={delta:.6f}\nBed Friction Equals IFA=0\nBed Friction Angle={delta:.6f}\n"
-        "Earth Pressure=constant\nEarth Pressure Coefficient=1\nDrag Law=off\n"
-        "[Time]\nEnd Time=2.5\nTimestep=10\n"
-        "[Flow]\nSlope Correction=1\nDepth Pressure=cos4\n"
-        "[Numerics]\nPrecision=double\n"
-        "[Output]\nReport Series=0\nOutput Directory=out\n")
+    (a.out / "case.run").write_text(solids_runfile(
+        f"# Curved valley at {a.angle_deg:g} deg to the grid (tools/peers/valley_scene.py).", "dem.tif",
+        np.radians(25.0), tend_s=150.0, report_s=10.0))
     print(f"{a.out}: {nx} x {ny} cells, release volume {float((hn / cos).sum()) * DX * DX:.0f} m3")
 
 
