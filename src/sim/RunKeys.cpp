@@ -239,7 +239,9 @@ void addNumericsKeys(KeyRegistry& r) {
                 "overfall where it starts dry; keeps standing water at the edge at rest; in two-phase runs for the "
                 "fluid, the solids see an open edge)")
       << choice("Nodata Boundary Type", {"wall", "open", "level"}, "wall", "boundary condition at nodata cells (as Boundary Type)")
-      << real("Minimum Flow Height", "1e-6", "m", 0, 1, "dry threshold below which velocity is zero")
+      << real("Minimum Flow Height", "1e-6", "m", 1e-9, 1,
+              "dry threshold below which velocity is zero (at least 1 nm: the velocity q/h of thinner films "
+              "overflows in single precision)")
       << flag("Skip Dry Tiles", "1", "skip 16x16-cell tiles with no flow within one tile (0: update every cell)");
 }
 

@@ -22,6 +22,16 @@ std::string jsonEscape(const std::string& s) {
   return o;
 }
 
+/// A number of summary.json: JSON has no NaN or infinity, so a non-finite value (a run that went
+/// unstable) is written as null, and the file stays readable beside its "failure".
+struct JsonNum {
+  double v;
+};
+std::ostream& operator<<(std::ostream& o, JsonNum n) {
+  if (std::isfinite(n.v)) return o << n.v;
+  return o << "null";
+}
+
 /// Speed maps of one phase: |q| / h where the layer is thicker than the dry threshold, else 0.
 std::vector<double> speedMap(const std::vector<double>& h, const std::vector<double>& qx, const std::vector<double>& qy,
                              double hDry) {
@@ -219,34 +229,34 @@ std::string Simulation::summaryJson(const RunSummary& s, Ending ending) const {
     o << "],\n";
   }
   if (atRest_)
-    o << "  \"ended_at_rest\": \"kinetic energy below " << scene_.restFraction << " of its peak "
-      << peakKinetic_ << " J\",\n";
+    o << "  \"ended_at_rest\": \"kinetic energy below " << JsonNum{scene_.restFraction} << " of its peak "
+      << JsonNum{peakKinetic_} << " J\",\n";
   o << "  \"device\": \"" << jsonEscape(d.name) << "\",\n  \"platform\": \"" << jsonEscape(d.platformName) << "\",\n"
     << "  \"precision\": \"" << compute::precisionName(ctx_->precision()) << "\",\n"
-    << "  \"grid\": {\"nx\": " << g.nx << ", \"ny\": " << g.ny << ", \"dx\": " << g.dx
+    << "  \"grid\": {\"nx\": " << g.nx << ", \"ny\": " << g.ny << ", \"dx\": " << JsonNum{g.dx}
     << ", \"domain_cells\": " << domainCells_ << "},\n"
-    << "  \"start_time_s\": " << scene_.startTime << ",\n  \"end_time_s\": " << scene_.endTime << ",\n"
-    << "  \"simulated_s\": " << s.simulatedSeconds << ",\n  \"steps\": " << s.steps << ",\n"
-    << "  \"wall_time_s\": " << s.wallSeconds << ",\n  \"cell_updates_per_s\": " << s.cellUpdatesPerSecond << ",\n"
-    << "  \"volume\": {\"initial_m3\": " << s.initialVolume << ", \"final_m3\": " << s.finalVolume
-    << ", \"outflow_m3\": " << s.totalOutflow << ", \"rain_m3\": " << s.totalRain
-    << ", \"infiltrated_m3\": " << s.totalInfiltrated << ", \"entrained_m3\": " << s.totalEntrained
-    << ", \"balance_error\": " << s.volumeBalanceError << "}";
+    << "  \"start_time_s\": " << JsonNum{scene_.startTime} << ",\n  \"end_time_s\": " << JsonNum{scene_.endTime} << ",\n"
+    << "  \"simulated_s\": " << JsonNum{s.simulatedSeconds} << ",\n  \"steps\": " << s.steps << ",\n"
+    << "  \"wall_time_s\": " << JsonNum{s.wallSeconds} << ",\n  \"cell_updates_per_s\": " << JsonNum{s.cellUpdatesPerSecond} << ",\n"
+    << "  \"volume\": {\"initial_m3\": " << JsonNum{s.initialVolume} << ", \"final_m3\": " << JsonNum{s.finalVolume}
+    << ", \"outflow_m3\": " << JsonNum{s.totalOutflow} << ", \"rain_m3\": " << JsonNum{s.totalRain}
+    << ", \"infiltrated_m3\": " << JsonNum{s.totalInfiltrated} << ", \"entrained_m3\": " << JsonNum{s.totalEntrained}
+    << ", \"balance_error\": " << JsonNum{s.volumeBalanceError} << "}";
   if (solver_->twoPhase()) {
     const flow::FlowDiagnostics& dg = solver_->diagnostics();
-    o << ",\n  \"energy\": {\"kinetic_J\": " << dg.kinetic << ", \"vertical_kinetic_J\": " << dg.kineticVertical
-      << ", \"potential_J\": " << dg.potential << ", \"potential_released_J\": " << lastReleased_
-      << ", \"mechanical_lost_J\": " << lastLost_ << ", \"friction_drag_work_J\": " << totalSourceWork_
-      << ", \"other_loss_J\": " << lastLost_ - totalSourceWork_ << "}";
+    o << ",\n  \"energy\": {\"kinetic_J\": " << JsonNum{dg.kinetic} << ", \"vertical_kinetic_J\": " << JsonNum{dg.kineticVertical}
+      << ", \"potential_J\": " << JsonNum{dg.potential} << ", \"potential_released_J\": " << JsonNum{lastReleased_}
+      << ", \"mechanical_lost_J\": " << JsonNum{lastLost_} << ", \"friction_drag_work_J\": " << JsonNum{totalSourceWork_}
+      << ", \"other_loss_J\": " << JsonNum{lastLost_ - totalSourceWork_} << "}";
   }
   if (particles_)
-    o << ",\n  \"particles\": {\"count\": " << particles_->count() << ", \"initial_mass_kg\": " << particles_->initialMass()
-      << ", \"final_mass_kg\": " << particles_->mass() << ", \"outflow_kg\": " << particles_->cumulativeOutflow()
-      << ", \"balance_error\": " << particles_->balanceError()
-      << ", \"viscous_dissipation_J\": " << particles_->solver().diagnostics().viscousDissipation
-      << ", \"art_stress_work_J\": " << particles_->solver().diagnostics().artificialStressWork
-      << ", \"friction_work_J\": " << particles_->solver().diagnostics().frictionWork
-      << ", \"potential_released_J\": " << particles_->solver().diagnostics().potentialReleased << "}";
+    o << ",\n  \"particles\": {\"count\": " << particles_->count() << ", \"initial_mass_kg\": " << JsonNum{particles_->initialMass()}
+      << ", \"final_mass_kg\": " << JsonNum{particles_->mass()} << ", \"outflow_kg\": " << JsonNum{particles_->cumulativeOutflow()}
+      << ", \"balance_error\": " << JsonNum{particles_->balanceError()}
+      << ", \"viscous_dissipation_J\": " << JsonNum{particles_->solver().diagnostics().viscousDissipation}
+      << ", \"art_stress_work_J\": " << JsonNum{particles_->solver().diagnostics().artificialStressWork}
+      << ", \"friction_work_J\": " << JsonNum{particles_->solver().diagnostics().frictionWork}
+      << ", \"potential_released_J\": " << JsonNum{particles_->solver().diagnostics().potentialReleased} << "}";
   o << "\n}\n";
   return o.str();
 }
