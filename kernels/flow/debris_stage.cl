@@ -6,9 +6,10 @@
 //   of spec §4 (hydrostatic reconstruction over b + h_s: a fluid or mixture at rest stays at rest).
 // Solids (h_s, q_s): flux h_s u_s^2 + h_s Pi with the lateral pressure Pi = max(0, K (1 - gamma) g_p H/2
 //   - 2 c sqrt(K) / rho_s) (Savage-Hutter with Bell's cohesion reduction, OpenLISEM P.43), the bed term
-//   -g_n h_s db/dx and the buoyancy -gamma g_p h_s dH/dx; the bed as the solids feel it (terrain-following
-//   gravity with the bed's curvature, the reconstructed bed, the faces between different beds and the
-//   walls they make) is in solid_bed.cl.
+//   -(1 - gamma) g_n h_s db/dx and the buoyancy -gamma h_s (g_n db/dx + g_p dH/dx), the solids' share of
+//   the fluid's pressure and bed force (solid_bed.cl, point 7); the bed as the
+//   solids feel it (terrain-following gravity with the bed's curvature, the reconstructed bed, the
+//   faces between different beds and the walls they make) is in solid_bed.cl.
 // Passive scalars carried with the solids (conserved as h_s * value, upwinded): the internal
 //   friction angle phi, the solid density rho_s, the grain size d and the cohesion c, so a cohesive
 //   release keeps its cohesion where it flows (and loose material stays loose where it flows over a
@@ -160,8 +161,11 @@ INLINE Material material_of(__constant const FlowParams* p, __constant const Deb
 
 /// A solid side of solid_bed.cl with the lateral pressure Pi [m^2/s^2] (per unit solid density and
 /// thickness) of coefficient K: Pi = max(0, a H - c0), a = K (1 - gamma) g_p / 2, c0 = 2 c sqrt(K) / rho_s.
-INLINE SolidSide solid_side(real h, real z, real un, real ut, real hf, real K, Material m, real g, real geff) {
-  const SolidSide s = {h, z, un, ut, (real)0.5 * K * ((real)1 - m.gamma) * g, (real)2 * m.c_over_rho * sqrt(K), hf, geff, 0};
+INLINE SolidSide solid_side(__constant const DebrisParams* dp, real h, real z, real un, real ut, real hf, real K, Material m,
+                            real g, real gn) {
+  const real gamma_sat = dp->rho_f / m.rho_s;
+  const SolidSide s = {h, z, un, ut, (real)0.5 * K * ((real)1 - m.gamma) * g, (real)2 * m.c_over_rho * sqrt(K), hf,
+                       gn * ((real)1 - m.gamma), gn * fmax((real)0, gamma_sat - m.gamma), 0};
   return s;
 }
 
@@ -340,11 +344,11 @@ void debris_stage(__constant const FlowParams* p, __constant const DebrisParams*
       Kc = earth_pressure_at(tc, passive_share(own.hi.us - own.lo.us, p->dx, gnk, c0.hs + c0.hf));
       Kp = earth_pressure_at(tp, passive_share(fp_cell.hi.us - fp_cell.lo.us, p->dx, gn[kp], cp.hs + cp.hf));
     }
-    SolidSide smL = solid_side(fm_cell.hi.hs, fm_cell.hi.zb, fm_cell.hi.us, fm_cell.hi.vs, fm_cell.hi.hf, Km, mm,
+    SolidSide smL = solid_side(dp, fm_cell.hi.hs, fm_cell.hi.zb, fm_cell.hi.us, fm_cell.hi.vs, fm_cell.hi.hf, Km, mm,
                                gm, gn[km]);
-    SolidSide smR = solid_side(own.lo.hs, own.lo.zb, own.lo.us, own.lo.vs, own.lo.hf, Kc, mc, g, gnk);
-    SolidSide spL = solid_side(own.hi.hs, own.hi.zb, own.hi.us, own.hi.vs, own.hi.hf, Kc, mc, g, gnk);
-    SolidSide spR = solid_side(fp_cell.lo.hs, fp_cell.lo.zb, fp_cell.lo.us, fp_cell.lo.vs, fp_cell.lo.hf, Kp, mp,
+    SolidSide smR = solid_side(dp, own.lo.hs, own.lo.zb, own.lo.us, own.lo.vs, own.lo.hf, Kc, mc, g, gnk);
+    SolidSide spL = solid_side(dp, own.hi.hs, own.hi.zb, own.hi.us, own.hi.vs, own.hi.hf, Kc, mc, g, gnk);
+    SolidSide spR = solid_side(dp, fp_cell.lo.hs, fp_cell.lo.zb, fp_cell.lo.us, fp_cell.lo.vs, fp_cell.lo.hf, Kp, mp,
                                gpp, gn[kp]);
     // Static contacts (solid_bed.cl, point 6): each side's share of its strength at rest.
     const int lk = lock_st[k];
@@ -362,7 +366,9 @@ void debris_stage(__constant const FlowParams* p, __constant const DebrisParams*
 
     mass_f[dir] = Fp.fh - Fm.fh;
     // Fluid normal momentum: as the single-phase stage, over the bed b + h_s.
-    real sf = (Fp.fqn + g * (Fp.p + Fp.corr_m)) - (Fm.fqn + g * (Fm.p + Fm.corr_p));
+    // Its pressure and bed forces (pf) apart from the advection: the solids' buoyancy below is
+    // their share of pf.
+    real pf = g * (Fp.p + Fp.corr_m) - g * (Fm.p + Fm.corr_p);
 #if DEBRIS_OBSTACLE
     {
       // The fluid's bed force on this cell's bed, from the face corrections of the neighbours'
@@ -376,10 +382,11 @@ void debris_stage(__constant const FlowParams* p, __constant const DebrisParams*
     // (The fluid is first order on and next to the particle bed, so the bed-slope term below is zero
     // in every cell with particles: the face corrections above carry all of their share.)
     if (c0.hf > (real)0) {
-      sf += g * (real)0.5 * (own.lo.hf + own.hi.hf) * ((own.hi.ef - own.hi.hf) - (own.lo.ef - own.lo.hf));
+      pf += g * (real)0.5 * (own.lo.hf + own.hi.hf) * ((own.hi.ef - own.hi.hf) - (own.lo.ef - own.lo.hf));
       const real dg = g - gnk;
-      if (dg != (real)0 && m_in && p_in) sf -= dg * c0.hf * (real)0.5 * (b[kp] - b[km]);
+      if (dg != (real)0 && m_in && p_in) pf -= dg * c0.hf * (real)0.5 * (b[kp] - b[km]);
     }
+    const real sf = (Fp.fqn - Fm.fqn) + pf;
     mass_s[dir] = Sp.fh - Sm.fh;
 #if DEBRIS_CURVATURE
     // The solids that flow in through each face, with the velocity and bed of the cell they come from.
@@ -399,19 +406,21 @@ void debris_stage(__constant const FlowParams* p, __constant const DebrisParams*
     }
 #endif
     // Solid normal momentum: lateral pressure and the bed jumps at the faces (solid_bed.cl), the
-    // bed slope within the cell with g_n over the reconstructed bed, and
-    // buoyancy from the centred gradient of the mixture thickness.
+    // bed slope within the cell with the submerged weight over the reconstructed bed, and the
+    // buoyancy (solid_bed.cl, point 7).
     real ss = (Sp.fqn + Sp.p + Sp.corr_m) - (Sm.fqn + Sm.p + Sm.corr_p);
     if (c0.hs > (real)0) {
       const real rise = own.hi.zb - own.lo.zb;
       // (c0.hs is the mean of the two face thicknesses of the symmetric reconstruction)
       const real hbar = c0.hs;
-      ss += gnk * hbar * rise;
-      const real span = (m_in && p_in) ? (real)0.5 : (real)1;
-      ss += mc.gamma * g * c0.hs * span * ((cp.hs + cp.hf) - (cm.hs + cm.hf));
+      ss += gnk * ((real)1 - mc.gamma) * hbar * rise;
+      // Buoyancy: the submerged solids' share of the fluid's pressure and bed force.
+      // (Only where there is fluid: pf of a dry fluid column is not used, nor always finite.)
+      const real share = buoyancy_share(dp, mc.rho_s, c0.hs, c0.hf, p->h_dry);
+      if (share > (real)0) ss += share * pf;
 #if DEBRIS_OBSTACLE
       // The particles' part of the bed force within the cell: all but what the DEM alone exerts.
-      react_s[dir] += mc.rho_s * gnk * hbar * (rise - bed_rise(b[km], m_in, b[k], b[kp], p_in));
+      react_s[dir] += mc.rho_s * gnk * ((real)1 - mc.gamma) * hbar * (rise - bed_rise(b[km], m_in, b[k], b[kp], p_in));
 #endif
     }
 #if DEBRIS_OBSTACLE

@@ -92,6 +92,22 @@
 //    take more than half its strength can be pushed past it and start to move. It replaces a rule
 //    that switched to min(p_m, p_p) below a thickness ratio of 1/10 (test_solid_steps.cpp,
 //    `SolidSteps.GranularStepBelowReposeStaysAtRest`).
+// 7. Submerged solids. The solids' momentum has -(1 - gamma) g_n h_s grad b (their weight, less the
+//    fluid's share of it) and the buoyancy -gamma h_s (g_n grad b + g_p grad H), the fluid-pressure
+//    gradient acting on the solids (spec section 4, after Pudasaini 2012; H = h_s + h_f). The fluid's
+//    own pressure and bed force is F_f = -h_f (g_n grad b + g_p grad H), so the buoyancy is exactly
+//    gamma_eff (h_s / h_f) F_f: the solids' share of the force the fluid's well-balanced scheme puts on
+//    itself (debris_stage.cl), zero in a lake at rest over any bed. The bed machinery of points 2-4
+//    acts with the submerged weight g_eff = (1 - gamma_eff) g_n (drops, rises, run-up heights), as the
+//    lateral pressure already does. (Before, the buoyancy was -gamma g_p h_s grad H from the
+//    centred thickness and the bed term took the full weight: at a cliff below water the fall took
+//    the full weight over one face and the buoyancy half the jump, and a submerged layer at the edge
+//    gained up to 2.4 times the energy the mixture released, two-phase soak seed
+//    7226485060292652449.) One term more is the fall itself: material that drops into the other
+//    side's fluid from a column with less fluid of its own (a dry bank into a pool) meets the
+//    pool's buoyancy on the part of the fall below the pool's surface, g_sub = (gamma_sat -
+//    gamma_eff) g_n (gamma_sat = rho_f / rho_s); without it a dry layer at the shore fell into the
+//    pool with its full weight, and the pool's water, lifted by what arrived, was paid by nobody.
 #ifndef TALUS_FLOW_SOLID_BED_CL
 #define TALUS_FLOW_SOLID_BED_CL
 #include "flow/riemann.cl"
@@ -111,12 +127,14 @@ INLINE real bed_rise(real bm, int m_in, real bc, real bp, int p_in) {
 
 /// One side of a solid face: face thickness h, face bed z, normal and tangential
 /// velocity, the lateral pressure Pi(h') = max(0, a (h' + hf) - c0) for any thickness h' of the side,
-/// g_eff = g_n of its cell (for the drop force and the run-up height), and, where the face is a
+/// g_eff = (1 - gamma_eff) g_n of its cell, the weight of its material in its own fluid (for the
+/// drop force and the run-up height; point 7), g_sub = (gamma_sat - gamma_eff) g_n, the buoyancy it
+/// meets beyond that where it falls into the other side's fluid (point 7), and, where the face is a
 /// static contact, the push its column can hold beyond its own pressure (point 6) [m^3/s^2].
 typedef struct {
   real h, z, un, ut;
   real a, c0, hf;
-  real geff;
+  real geff, gsub;
   real hold;
 } SolidSide;
 
@@ -235,6 +253,15 @@ INLINE real solid_jump(SolidSide s, SolidApproach a, real2 st, real zs, Block* b
   return side_pressure(s, s.h) - side_pressure(s, st.x) + s.h * s.un * s.un - st.x * st.y * st.y;
 }
 
+/// Force (as a face-flux correction, < 0 along the fall) of the drop from side s's face bed to z* <
+/// s.z (point 3), with the buoyancy of point 7: the fall in its own weight g_eff, less g_sub on the
+/// part of it below the other side's mixture surface.
+INLINE real drop_force(SolidSide s, SolidSide other, real zs) {
+  const real fall = s.z - zs;
+  const real under = clamp(other.z + other.h + other.hf - zs, (real)0, fall);
+  return -s.h * (s.geff * fall - s.gsub * under);
+}
+
 typedef struct {
   real fh, fqn, fqt, p;  // mass, normal momentum (no pressure), tangential momentum, pressure flux
   real corr_m, corr_p;   // bed-jump corrections of the minus / plus side (added to their face flux)
@@ -291,12 +318,12 @@ INLINE SolidFace solid_face(int m_in, SolidSide m, int p_in, SolidSide p, int ki
   if (zs >= zm) {
     f.corr_m = f.wall_m = solid_jump(m, am_f, sm, zs, &f.blk_m);
   } else {
-    f.corr_m = m.geff * m.h * (zs - zm);
+    f.corr_m = drop_force(m, p, zs);
   }
   if (zs >= zp) {
     f.corr_p = f.wall_p = solid_jump(p, ap_f, sp, zs, &f.blk_p);
   } else {
-    f.corr_p = p.geff * p.h * (zs - zp);
+    f.corr_p = drop_force(p, m, zs);
   }
   if (wall) f.blk_m.wall = f.blk_p.wall = 1;
   return f;
