@@ -117,18 +117,18 @@ INLINE Prim2 load_prim2(__constant const FlowParams* p, __constant const DebrisP
   return c;
 }
 
-/// MUSCL reconstruction of both phases of cell c (zero slopes next to outside cells). The fluid is
+/// MUSCL reconstruction of both phases of cell c (zero slopes next to outside cells), with the rise
+/// of its solids' bed (bed_rise, solid_bed.cl, point 2). The fluid is
 /// first order on and next to the particle bed: its bed is then flat within each cell, so every bed
 /// force on the fluid there is a face correction that the particles take in full (no bed slope
 /// inside a cell without particles, which nothing could take the reaction of).
-INLINE Faces2 reconstruct2(Prim2 m, int m_in, Prim2 c, Prim2 p, int p_in) {
+INLINE Faces2 reconstruct2(Prim2 m, int m_in, Prim2 c, Prim2 p, int p_in, real rise) {
   const Prim s0 = {c.hs, c.es, c.us, c.vs}, sm = {m.hs, m.es, m.us, m.vs}, sp = {p.hs, p.es, p.us, p.vs};
   const Prim f0 = {c.hf, c.ef, c.uf, c.vf}, fm = {m.hf, m.ef, m.uf, m.vf}, fp = {p.hf, p.ef, p.uf, p.vf};
   const int on_bed = c.hc > (real)0 || (m_in && m.hc > (real)0) || (p_in && p.hc > (real)0);
   CellFaces s = reconstruct(sm, m_in, s0, sp, p_in);
   const CellFaces f = reconstruct(fm, m_in && !on_bed, f0, fp, p_in && !on_bed);
   // The solids' bed: reconstructed whatever the solids around (solid_bed.cl, point 2).
-  const real rise = bed_rise(m.es, m_in, c.es, p.es, p_in);
   s.e_lo = c.es - (real)0.5 * rise;
   s.e_hi = c.es + (real)0.5 * rise;
   Faces2 r;
@@ -303,17 +303,19 @@ void debris_stage(__constant const FlowParams* p, __constant const DebrisParams*
     const Prim2 c0 = load_prim2(p, dp, S_st, hf_st, qfx_st, qfy_st, b, pbed, k, n, dir);
     const Prim2 cm = load_prim2(p, dp, S_st, hf_st, qfx_st, qfy_st, b, pbed, km, n, dir);
     const Prim2 cp = load_prim2(p, dp, S_st, hf_st, qfx_st, qfy_st, b, pbed, kp, n, dir);
-    const Faces2 own = reconstruct2(cm, m_in, c0, cp, p_in);
+    // The cells two away (inside only where the cell between is).
+    const int mm_in = m_in && cell_inside(p, mask, i - 2 * di, j - 2 * dj);
+    const int pp_in = p_in && cell_inside(p, mask, i + 2 * di, j + 2 * dj);
+    const int kmm = mm_in ? cell_index(p, i - 2 * di, j - 2 * dj) : km, kpp = pp_in ? cell_index(p, i + 2 * di, j + 2 * dj) : kp;
+    const Faces2 own = reconstruct2(cm, m_in, c0, cp, p_in, bed_rise(BED(kmm), mm_in, cm.es, m_in, c0.es, cp.es, p_in, BED(kpp), pp_in));
     Faces2 fm_cell = own, fp_cell = own;
     if (m_in) {
-      const int mm_in = cell_inside(p, mask, i - 2 * di, j - 2 * dj);
-      const Prim2 cmm = mm_in ? load_prim2(p, dp, S_st, hf_st, qfx_st, qfy_st, b, pbed, cell_index(p, i - 2 * di, j - 2 * dj), n, dir) : cm;
-      fm_cell = reconstruct2(cmm, mm_in, cm, c0, 1);
+      const Prim2 cmm = mm_in ? load_prim2(p, dp, S_st, hf_st, qfx_st, qfy_st, b, pbed, kmm, n, dir) : cm;
+      fm_cell = reconstruct2(cmm, mm_in, cm, c0, 1, bed_rise(cmm.es, 0, cmm.es, mm_in, cm.es, c0.es, 1, cp.es, p_in));
     }
     if (p_in) {
-      const int pp_in = cell_inside(p, mask, i + 2 * di, j + 2 * dj);
-      const Prim2 cpp = pp_in ? load_prim2(p, dp, S_st, hf_st, qfx_st, qfy_st, b, pbed, cell_index(p, i + 2 * di, j + 2 * dj), n, dir) : cp;
-      fp_cell = reconstruct2(c0, 1, cp, cpp, pp_in);
+      const Prim2 cpp = pp_in ? load_prim2(p, dp, S_st, hf_st, qfx_st, qfy_st, b, pbed, kpp, n, dir) : cp;
+      fp_cell = reconstruct2(c0, 1, cp, cpp, pp_in, bed_rise(cm.es, m_in, c0.es, 1, cp.es, cpp.es, pp_in, cpp.es, 0));
     }
     const int kind_m = boundary_kind(p, i - di, j - dj), kind_p = boundary_kind(p, i + di, j + dj);
     const real gm = gp[km], gpp = gp[kp];
@@ -420,18 +422,16 @@ void debris_stage(__constant const FlowParams* p, __constant const DebrisParams*
       if (share > (real)0) ss += share * pf;
 #if DEBRIS_OBSTACLE
       // The particles' part of the bed force within the cell: all but what the DEM alone exerts.
-      react_s[dir] += mc.rho_s * gnk * ((real)1 - mc.gamma) * hbar * (rise - bed_rise(b[km], m_in, b[k], b[kp], p_in));
+      react_s[dir] += mc.rho_s * gnk * ((real)1 - mc.gamma) * hbar * (rise - bed_rise(b[kmm], mm_in, b[km], m_in, b[k], b[kp], p_in, b[kpp], pp_in));
 #endif
     }
 #if DEBRIS_OBSTACLE
     {
       // The particles' part of the bed-jump forces and of the wall reactions: the faces again over
       // the DEM alone (face beds of the DEM's own reconstruction); the difference is the particles'.
-      const real zb_m = b[km] + (real)0.5 * bed_rise(m_in && cell_inside(p, mask, i - 2 * di, j - 2 * dj) ? b[cell_index(p, i - 2 * di, j - 2 * dj)] : b[km],
-                                                     m_in && cell_inside(p, mask, i - 2 * di, j - 2 * dj), b[km], b[k], 1);
-      const real zb_p = b[kp] - (real)0.5 * bed_rise(b[k], 1, b[kp], p_in && cell_inside(p, mask, i + 2 * di, j + 2 * dj) ? b[cell_index(p, i + 2 * di, j + 2 * dj)] : b[kp],
-                                                     p_in && cell_inside(p, mask, i + 2 * di, j + 2 * dj));
-      const real rise_b = bed_rise(b[km], m_in, b[k], b[kp], p_in);
+      const real zb_m = b[km] + (real)0.5 * bed_rise(b[kmm], 0, b[kmm], mm_in, b[km], b[k], 1, b[kp], p_in);
+      const real zb_p = b[kp] - (real)0.5 * bed_rise(b[km], m_in, b[k], 1, b[kp], b[kpp], pp_in, b[kpp], 0);
+      const real rise_b = bed_rise(b[kmm], mm_in, b[km], m_in, b[k], b[kp], p_in, b[kpp], pp_in);
       SolidSide dL = smL, dR = smR, eL = spL, eR = spR;
       dL.z = zb_m;
       dR.z = b[k] - (real)0.5 * rise_b;

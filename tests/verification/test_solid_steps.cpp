@@ -130,6 +130,39 @@ TEST(SolidSteps, LayerInAPitStaysAtRest) {
     }
 }
 
+// A pit at the raster edge. A pit (8 x 8 cells, 1 m or 20 m deep) against two walls of the raster
+// (its cells i, j = 1..8: the edge cells i = 0 or j = 0 beside it have no neighbour beyond), filled
+// with solids to the level of the 0.3 m layer around it: the surface is level everywhere, so rest is
+// exact as in the pits above. The edge cells' bed has only one neighbour along the axis: its slope
+// is the one-sided difference limited by the next one inward (bed_rise, solid_bed.cl), 0 here. With
+// the bare one-sided difference the edge cells took the pit's wall as their own slope (20 m over a
+// cell) and slid into the pit (soak seed 14540127069293829764 in the stress suite: 10 g; here
+// |q_s| up to 4.7 m^2/s at 1 and 10 m cells). Not at 0.1 m cells yet: there the edge cells still
+// move (0.3 m^2/s), because g_n = g cos^2 (src/flow/SlopeGravity.cpp) still takes the bare one-sided
+// difference, a slope of 10-200, and their lateral pressure and friction shrink by that factor
+// beside neighbours with the full g. With limitedBedSlope limited alike all six cases are at rest
+// (measured); that change waits on the water's split-sweep reference test (see bed_rise).
+TEST(SolidSteps, LayerBesideAPitAtTheRasterEdgeStaysAtRest) {
+  for (const double dx : {1.0, 10.0})
+    for (const double depth : {1.0, 20.0}) {
+      const Rest r = runRestOf(
+          dx,
+          [&](fl::FlowInput& in, const Grid& g) {
+            for (int j = 0; j < g.ny; ++j)
+              for (int i = 0; i < g.nx; ++i) {
+                const std::size_t k = g.index(i, j);
+                const bool pit = i >= 1 && i <= 8 && j >= 1 && j <= 8;
+                in.bed[k] = pit ? -depth : 0.0;
+                in.hs[k] = 0.3 - in.bed[k];
+              }
+          },
+          true, 200);
+      std::printf("[ pit at the raster edge ] dx %.1f m, depth %.0f m: max |q_s| %.2e m^2/s\n", dx, depth, r.qmax);
+      EXPECT_EQ(r.qmax, 0.0) << dx << " " << depth;
+      EXPECT_TRUE(r.unchanged) << dx << " " << depth;
+    }
+}
+
 // A granular step at rest. On flat ground, a plateau of solids H thick (cells i < 12) beside a thin
 // layer h_t (i >= 12), K = 1, delta = 30 deg, walls: the surface drops by H - h_t = 0.8 tan(delta) dx
 // over the face between them, below the angle of repose, so the state is one the model holds: with
