@@ -77,13 +77,13 @@ INLINE Prim local_prim(__local const real* lh, __local const real* le, __local c
 
 /// MUSCL face values of the local cell (a, b) along `dir` (neighbours at -1 and +1).
 INLINE CellFaces local_faces(__local const real* lh, __local const real* le, __local const real* lu,
-                             __local const real* lv, __local const uchar* lin, int a, int b, int dir) {
+                             __local const real* lv, __local const uchar* lin, int a, int b, int dir, real h_dry) {
   const int da = dir == 0, db = dir == 1;
   const int m_in = lin[(b - db) * SPAN + a - da], p_in = lin[(b + db) * SPAN + a + da];
   const Prim c = local_prim(lh, le, lu, lv, a, b, dir);
   const Prim m = m_in ? local_prim(lh, le, lu, lv, a - da, b - db, dir) : c;
   const Prim p = p_in ? local_prim(lh, le, lu, lv, a + da, b + db, dir) : c;
-  return reconstruct_surface(m, m_in, c, p, p_in);
+  return dry_faces(reconstruct_surface(m, m_in, c, p, p_in), h_dry);
 }
 
 INLINE Side side_hi(CellFaces f, real g) { Side s = {f.h_hi, f.e_hi, f.un_hi, f.ut_hi, g}; return s; }
@@ -148,8 +148,8 @@ void flow_stage(__constant const FlowParams* p, __global const uchar* mask, __gl
       const int m_in = lin[sm], p_in = lin[sp];
       Face fc = {0, 0, 0, 0, 0, 0};
       if (m_in || p_in) {
-        const CellFaces mf = local_faces(lh, le, lu, lv, lin, m_in ? am : ap, m_in ? bm : bp, dir);
-        const CellFaces pf = p_in ? local_faces(lh, le, lu, lv, lin, ap, bp, dir) : mf;
+        const CellFaces mf = local_faces(lh, le, lu, lv, lin, m_in ? am : ap, m_in ? bm : bp, dir, p->h_dry);
+        const CellFaces pf = p_in ? local_faces(lh, le, lu, lv, lin, ap, bp, dir, p->h_dry) : mf;
         const int outside_a = m_in ? ap : am, outside_b = m_in ? bp : bm;
         const real far = (m_in && p_in) ? (real)0 : far_level[cell_index(p, x0 + (m_in ? am : ap), y0 + (m_in ? bm : bp))];
         fc = face_between(m_in, side_hi(mf, lg[sm]), p_in, side_lo(pf, lg[sp]),
@@ -222,7 +222,7 @@ void flow_stage(__constant const FlowParams* p, __global const uchar* mask, __gl
     // and the centred well-balanced bed source from the cell's own reconstruction.
     real s = (ffqn[op] + g * (ffp[op] + ffcm[op])) - (ffqn[om] + g * (ffp[om] + ffcp[om]));
     if (lh[sc] > (real)0) {
-      const CellFaces own = local_faces(lh, le, lu, lv, lin, la, lb, dir);
+      const CellFaces own = local_faces(lh, le, lu, lv, lin, la, lb, dir, p->h_dry);
       s += g * (real)0.5 * (own.h_lo + own.h_hi) * ((own.e_hi - own.h_hi) - (own.e_lo - own.h_lo));
       const real dg = g - gn[k];  // exactly zero with the default depth pressure (g_p == g_n)
       if (dg != (real)0 && m_in && p_in)

@@ -162,8 +162,12 @@ CpuFlowReference::Faces CpuFlowReference::reconstruct(const State& s, int i, int
       dut = limiter(c.ut - m.ut, p.ut - c.ut);
     }
   }
-  return {c.h - 0.5 * dh,   c.h + 0.5 * dh,   c.eta - 0.5 * de, c.eta + 0.5 * de,
+  Faces f{c.h - 0.5 * dh,   c.h + 0.5 * dh,   c.eta - 0.5 * de, c.eta + 0.5 * de,
           c.un - 0.5 * dun, c.un + 0.5 * dun, c.ut - 0.5 * dut, c.ut + 0.5 * dut};
+  // A face no thicker than the dry threshold is dry, at the same face bed (flow_common.cl, dry_faces).
+  if (f.hLo <= settings_.hDry) f.etaLo -= f.hLo, f.hLo = 0.0;
+  if (f.hHi <= settings_.hDry) f.etaHi -= f.hHi, f.hHi = 0.0;
+  return f;
 }
 
 // HLL (Harten, Lax & van Leer 1983) / HLLC (Toro 2001, ch. 10) with Toro's two-rarefaction wave
