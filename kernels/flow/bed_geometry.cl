@@ -1,9 +1,9 @@
 // The bed's slope fields recomputed on the device after the bed changed (entrainment.cl), over the
 // active tiles (bed changes happen in wet cells; the active tiles cover two cells around them).
 // The same formulas as the host's computeSlopeGravity (src/flow/SlopeGravity.cpp, its CPU reference
-// in tests/kernels/test_bed_geometry.cpp): per axis the minmod of the one-sided bed differences (one
-// side next to outside cells), the slope speed sqrt(g s_max dx) from the steepest one-sided
-// difference, g_n = g cos^2(theta) and g_p = g_n or g cos^4(theta) (-DDEPTH_COS4=1). Built with
+// in tests/kernels/test_bed_geometry.cpp): per axis the minmod of the one-sided bed differences (next
+// to outside cells the one side's, limited by the next difference inward), the slope speed
+// sqrt(g s_max dx) from the steepest one-sided difference, g_n = g cos^2(theta) and g_p = g_n or g cos^4(theta) (-DDEPTH_COS4=1). Built with
 // -DSLOPE_CORRECTION=0 the gravities stay g, as on the host.
 #include "flow/flow_common.cl"
 
@@ -25,8 +25,17 @@ INLINE real bed_limited_slope(__constant const FlowParams* p, __global const uch
   const int m = cell_inside(p, mask, i - di, j - dj), q = cell_inside(p, mask, i + di, j + dj);
   const real c = f[cell_index(p, i, j)];
   if (m && q) return minmod_slope(c - f[cell_index(p, i - di, j - dj)], f[cell_index(p, i + di, j + dj)] - c) / p->dx;
-  if (q) return (f[cell_index(p, i + di, j + dj)] - c) / p->dx;
-  if (m) return (c - f[cell_index(p, i - di, j - dj)]) / p->dx;
+  // Next to an outside cell: the one-sided difference limited by the next one inward.
+  if (q) {
+    const real d = f[cell_index(p, i + di, j + dj)] - c;
+    if (!cell_inside(p, mask, i + 2 * di, j + 2 * dj)) return d / p->dx;
+    return minmod_slope(d, f[cell_index(p, i + 2 * di, j + 2 * dj)] - f[cell_index(p, i + di, j + dj)]) / p->dx;
+  }
+  if (m) {
+    const real d = c - f[cell_index(p, i - di, j - dj)];
+    if (!cell_inside(p, mask, i - 2 * di, j - 2 * dj)) return d / p->dx;
+    return minmod_slope(d, f[cell_index(p, i - di, j - dj)] - f[cell_index(p, i - 2 * di, j - 2 * dj)]) / p->dx;
+  }
   return (real)0;
 }
 

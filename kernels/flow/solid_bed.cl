@@ -124,11 +124,7 @@
 /// plane stays exact), and a kink between the cell and its inner neighbour (a pit's wall beside the
 /// raster edge) is a kink, not the cell's slope. (The bare one-sided difference made a layer at
 /// rest in the edge cell beside an 18 m pit slide into it at 10 g: soak seed 14540127069293829764.)
-/// (g_n and the slope fields, limitedBedSlope in src/flow/SlopeGravity.cpp, still take the bare
-/// one-sided difference there: a cell beside such a kink has a small g_n, which weakens its forces
-/// but adds none. Limiting them alike changed the water's split-sweep scene of
-/// FlowKernels.SplitSweepsMatchCpuReferenceAndStayPositiveUpToCourantOne so that device and CPU
-/// reference part by 2e-4 m at Courant numbers above 0.99; not yet understood, so not changed.)
+/// The same rule as limitedBedSlope (src/flow/SlopeGravity.cpp), which gives g_n and the slopes.
 INLINE real bed_rise(real bmm, int mm_in, real bm, int m_in, real bc, real bp, int p_in, real bpp, int pp_in) {
   if (m_in && p_in) return bed_minmod(bc - bm, bp - bc);
   if (p_in) return pp_in ? bed_minmod(bp - bc, bpp - bp) : bp - bc;

@@ -24,8 +24,16 @@ double limitedBedSlope(const Grid& g, const std::vector<double>& field, const st
   const bool m = insideCell(g, mask, i - di, j - dj), p = insideCell(g, mask, i + di, j + dj);
   const double c = field[g.index(i, j)];
   if (m && p) return minmod(c - field[g.index(i - di, j - dj)], field[g.index(i + di, j + dj)] - c) / g.dx;
-  if (p) return (field[g.index(i + di, j + dj)] - c) / g.dx;
-  if (m) return (c - field[g.index(i - di, j - dj)]) / g.dx;
+  if (p) {
+    const double d = field[g.index(i + di, j + dj)] - c;
+    if (!insideCell(g, mask, i + 2 * di, j + 2 * dj)) return d / g.dx;
+    return minmod(d, field[g.index(i + 2 * di, j + 2 * dj)] - field[g.index(i + di, j + dj)]) / g.dx;
+  }
+  if (m) {
+    const double d = c - field[g.index(i - di, j - dj)];
+    if (!insideCell(g, mask, i - 2 * di, j - 2 * dj)) return d / g.dx;
+    return minmod(d, field[g.index(i - di, j - dj)] - field[g.index(i - 2 * di, j - 2 * dj)]) / g.dx;
+  }
   return 0.0;
 }
 

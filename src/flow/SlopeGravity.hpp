@@ -3,9 +3,9 @@
 // cos^2(theta) = 1 / (1 + |grad b|^2). (The bed's curvature enters the solids along their path,
 // from the change of this slope between cells: kernels/flow/solid_bed.cl, point 1.)
 // grad b is the bed slope the solids' reconstruction uses: per axis the minmod of the two one-sided
-// differences (the one-sided difference next to nodata cells and the raster edge), so a plane has its
-// exact slope, and a cell beside a DEM step is flat (the step itself is a face of the reconstructed
-// bed, a wall to the material below it).
+// differences (next to nodata cells and the raster edge the one-sided difference, limited by the
+// next difference inward), so a plane has its exact slope, and a cell beside a DEM step is flat (the
+// step itself is a face of the reconstructed bed, a wall to the material below it).
 #pragma once
 #include <cstdint>
 #include <vector>
@@ -29,8 +29,9 @@ SlopeGravity computeSlopeGravity(const Grid& grid, const std::vector<double>& be
                                  const FlowSettings& settings);
 
 /// The limited bed slope along one axis at cell (i, j): minmod of the one-sided differences of
-/// `field` where both neighbours are inside, the one-sided difference next to an outside cell, 0
-/// without inside neighbours along the axis (per unit length: divided by dx).
+/// `field` where both neighbours are inside; next to an outside cell the one-sided difference
+/// limited by the next one inward (unlimited where the domain is two cells wide there); 0 without
+/// inside neighbours along the axis (per unit length: divided by dx).
 double limitedBedSlope(const Grid& grid, const std::vector<double>& field, const std::vector<uint8_t>& mask, int i,
                        int j, int di, int dj);
 
