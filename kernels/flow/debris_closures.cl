@@ -63,15 +63,6 @@ INLINE real submerged_gamma(__constant const DebrisParams* dp, real rho_s, real 
   return wet >= pores ? gamma : gamma * wet / pores;
 }
 
-/// The solids' share of the fluid's pressure and bed force (their buoyancy, debris_stage.cl):
-/// gamma_eff h_s / h_f per unit fluid force, = gamma min(h_s / h_f, phi_p / (1 - phi_p)) (partly
-/// submerged, gamma_eff h_s / h_f = gamma phi_p / (1 - phi_p)), so bounded however thin the fluid.
-/// Zero where the fluid is dry (as submerged_gamma's caller takes it).
-INLINE real buoyancy_share(__constant const DebrisParams* dp, real rho_s, real hs, real hf, real h_dry) {
-  if (!(hf > h_dry) || !(hs > (real)0)) return (real)0;
-  return dp->rho_f / rho_s * fmin(hs / hf, dp->packing / ((real)1 - dp->packing));
-}
-
 /// Solid velocity desingularised in films (Kurganov & Petrova 2007, eq. 2.21, with eps = max(h_dry,
 /// film_h)): u = sqrt(2) h q / sqrt(h^4 + max(h^4, eps^4)). In a solid film of a fraction of a
 /// millimetre q/h is ill-conditioned and would drive spurious speeds (and tiny time steps) at thin

@@ -6,8 +6,8 @@
 //   of spec §4 (hydrostatic reconstruction over b + h_s: a fluid or mixture at rest stays at rest).
 // Solids (h_s, q_s): flux h_s u_s^2 + h_s Pi with the lateral pressure Pi = max(0, K (1 - gamma) g_p H/2
 //   - 2 c sqrt(K) / rho_s) (Savage-Hutter with Bell's cohesion reduction, OpenLISEM P.43), the bed term
-//   -(1 - gamma) g_n h_s db/dx and the buoyancy -gamma h_s (g_n db/dx + g_p dH/dx), the solids' share of
-//   the fluid's pressure and bed force (solid_bed.cl, point 7); the bed as the
+//   -(1 - gamma) g_n h_s db/dx and the buoyancy -gamma h_s (g_n db/dx + g_p dH/dx) from the gradient of
+//   the fluid's surface (solid_bed.cl, point 7); the bed as the
 //   solids feel it (terrain-following gravity with the bed's curvature, the reconstructed bed, the
 //   faces between different beds and the walls they make) is in solid_bed.cl.
 // Passive scalars carried with the solids (conserved as h_s * value, upwinded): the internal
@@ -115,6 +115,16 @@ INLINE Prim2 load_prim2(__constant const FlowParams* p, __constant const DebrisP
   c.uf = dir == 0 ? uf : vf;
   c.vf = dir == 0 ? vf : uf;
   return c;
+}
+
+/// The fluid's surface of neighbour n as cell c's buoyancy sees it (solid_bed.cl, point 7): its
+/// surface where it holds fluid; else (no fluid, or outside: c's own) the top of its column, but not
+/// above c's surface (a dry bank higher than the water is a wall to it, and the water at rest beside it
+/// pushes nothing).
+INLINE real fluid_surface_seen(Prim2 n, int n_in, Prim2 c, real h_dry) {
+  if (!n_in) return c.ef;
+  if (n.hf > h_dry) return n.ef;
+  return fmin(n.ef - n.hf, c.ef);
 }
 
 /// MUSCL reconstruction of both phases of cell c (zero slopes next to outside cells), with the rise
@@ -368,9 +378,7 @@ void debris_stage(__constant const FlowParams* p, __constant const DebrisParams*
 
     mass_f[dir] = Fp.fh - Fm.fh;
     // Fluid normal momentum: as the single-phase stage, over the bed b + h_s.
-    // Its pressure and bed forces (pf) apart from the advection: the solids' buoyancy below is
-    // their share of pf.
-    real pf = g * (Fp.p + Fp.corr_m) - g * (Fm.p + Fm.corr_p);
+    real sf = (Fp.fqn + g * (Fp.p + Fp.corr_m)) - (Fm.fqn + g * (Fm.p + Fm.corr_p));
 #if DEBRIS_OBSTACLE
     {
       // The fluid's bed force on this cell's bed, from the face corrections of the neighbours'
@@ -384,11 +392,10 @@ void debris_stage(__constant const FlowParams* p, __constant const DebrisParams*
     // (The fluid is first order on and next to the particle bed, so the bed-slope term below is zero
     // in every cell with particles: the face corrections above carry all of their share.)
     if (c0.hf > (real)0) {
-      pf += g * (real)0.5 * (own.lo.hf + own.hi.hf) * ((own.hi.ef - own.hi.hf) - (own.lo.ef - own.lo.hf));
+      sf += g * (real)0.5 * (own.lo.hf + own.hi.hf) * ((own.hi.ef - own.hi.hf) - (own.lo.ef - own.lo.hf));
       const real dg = g - gnk;
-      if (dg != (real)0 && m_in && p_in) pf -= dg * c0.hf * (real)0.5 * (b[kp] - b[km]);
+      if (dg != (real)0 && m_in && p_in) sf -= dg * c0.hf * (real)0.5 * (b[kp] - b[km]);
     }
-    const real sf = (Fp.fqn - Fm.fqn) + pf;
     mass_s[dir] = Sp.fh - Sm.fh;
 #if DEBRIS_CURVATURE
     // The solids that flow in through each face, with the velocity and bed of the cell they come from.
@@ -416,10 +423,15 @@ void debris_stage(__constant const FlowParams* p, __constant const DebrisParams*
       // (c0.hs is the mean of the two face thicknesses of the symmetric reconstruction)
       const real hbar = c0.hs;
       ss += gnk * ((real)1 - mc.gamma) * hbar * rise;
-      // Buoyancy: the submerged solids' share of the fluid's pressure and bed force.
-      // (Only where there is fluid: pf of a dry fluid column is not used, nor always finite.)
-      const real share = buoyancy_share(dp, mc.rho_s, c0.hs, c0.hf, p->h_dry);
-      if (share > (real)0) ss += share * pf;
+      // Buoyancy (solid_bed.cl, point 7): gamma_eff h_s (g_p grad eta + (g_n - g_p) grad b), the
+      // fluid's surface eta centred, a neighbour without fluid seen as a wall (its top, at most ours).
+      if (mc.gamma > (real)0) {
+        const real span = (m_in && p_in) ? (real)0.5 : (real)1;
+        const real em = fluid_surface_seen(cm, m_in, c0, p->h_dry), ep = fluid_surface_seen(cp, p_in, c0, p->h_dry);
+        real grad = g * span * (ep - em);
+        if (m_in && p_in) grad += (gnk - g) * (real)0.5 * (b[kp] - b[km]);
+        ss += mc.gamma * c0.hs * grad;
+      }
 #if DEBRIS_OBSTACLE
       // The particles' part of the bed force within the cell: all but what the DEM alone exerts.
       react_s[dir] += mc.rho_s * gnk * ((real)1 - mc.gamma) * hbar * (rise - bed_rise(b[kmm], mm_in, b[km], m_in, b[k], b[kp], p_in, b[kpp], pp_in));

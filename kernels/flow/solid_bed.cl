@@ -94,20 +94,26 @@
 //    `SolidSteps.GranularStepBelowReposeStaysAtRest`).
 // 7. Submerged solids. The solids' momentum has -(1 - gamma) g_n h_s grad b (their weight, less the
 //    fluid's share of it) and the buoyancy -gamma h_s (g_n grad b + g_p grad H), the fluid-pressure
-//    gradient acting on the solids (spec section 4, after Pudasaini 2012; H = h_s + h_f). The fluid's
-//    own pressure and bed force is F_f = -h_f (g_n grad b + g_p grad H), so the buoyancy is exactly
-//    gamma_eff (h_s / h_f) F_f: the solids' share of the force the fluid's well-balanced scheme puts on
-//    itself (debris_stage.cl), zero in a lake at rest over any bed. The bed machinery of points 2-4
-//    acts with the submerged weight g_eff = (1 - gamma_eff) g_n (drops, rises, run-up heights), as the
-//    lateral pressure already does. (Before, the buoyancy was -gamma g_p h_s grad H from the
-//    centred thickness and the bed term took the full weight: at a cliff below water the fall took
+//    gradient acting on the solids (spec section 4, after Pudasaini 2012; H = h_s + h_f), which is
+//    -gamma h_s (g_p grad eta + (g_n - g_p) grad b) with eta = b + H the fluid's surface. In a lake
+//    the weight and the bed part of the buoyancy are two large terms that cancel to the submerged
+//    weight, so they are taken together: the bed machinery of points 2-4 acts with the submerged
+//    weight g_eff = (1 - gamma_eff) g_n (drops, rises, run-up heights), as the lateral pressure
+//    already does, and the buoyancy is the gradient of the fluid's surface, centred, zero in a lake
+//    at rest over any bed (debris_stage.cl; a neighbour without fluid is seen as a wall, its top but
+//    not above our surface). Before, the buoyancy was -gamma g_p h_s grad H from centred thicknesses
+//    while the bed force took the full weight over the faces: at a cliff below water the fall took
 //    the full weight over one face and the buoyancy half the jump, and a submerged layer at the edge
-//    gained up to 2.4 times the energy the mixture released, two-phase soak seed
-//    7226485060292652449.) One term more is the fall itself: material that drops into the other
-//    side's fluid from a column with less fluid of its own (a dry bank into a pool) meets the
-//    pool's buoyancy on the part of the fall below the pool's surface, g_sub = (gamma_sat -
-//    gamma_eff) g_n (gamma_sat = rho_f / rho_s); without it a dry layer at the shore fell into the
-//    pool with its full weight, and the pool's water, lifted by what arrived, was paid by nobody.
+//    gained up to 2.4 times the energy the mixture released (two-phase soak seed
+//    7226485060292652449). (Taking the buoyancy as the solids' share gamma_eff h_s / h_f of the
+//    fluid's discrete pressure force, exact in the hydrostatic limit, was tried: at a dam-break face
+//    the Riemann pressure on a thin fluid film over solids is far above h_f g grad eta, and the solids
+//    under it were thrown off, soak seed 9962061747903623964.) One term more is the fall itself:
+//    material that drops into the other side's fluid from a column with less fluid of its own (a dry
+//    bank into a pool) meets the pool's buoyancy on the part of the fall below the pool's surface,
+//    g_sub = (gamma_sat - gamma_eff) g_n (gamma_sat = rho_f / rho_s); without it a dry layer at the
+//    shore fell into the pool with its full weight, and the pool's water, lifted by what arrived,
+//    was paid by nobody.
 #ifndef TALUS_FLOW_SOLID_BED_CL
 #define TALUS_FLOW_SOLID_BED_CL
 #include "flow/riemann.cl"

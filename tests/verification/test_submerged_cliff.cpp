@@ -18,7 +18,7 @@
 // 2 m in the pool. Two cases: (a) the lake's surface 1 m above the ledge's solids (all submerged,
 // a lake at rest); (b) the surface level with the ledge's solids, which are dry (a bank at the
 // shore). Before point 7 the edge cell gained 1.40 (a) and 1.93 (b) times the released energy, and
-// (b) still 1.93 with the submerged weight and the fluid-force buoyancy alone (without g_sub).
+// (b) still 1.93 with the submerged weight and the surface-gradient buoyancy alone (without g_sub).
 #include <gtest/gtest.h>
 
 #include <cmath>
