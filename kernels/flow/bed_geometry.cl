@@ -1,10 +1,10 @@
 // The bed's slope fields recomputed on the device after the bed changed (entrainment.cl), over the
 // active tiles (bed changes happen in wet cells; the active tiles cover two cells around them).
 // The same formulas as the host's computeSlopeGravity (src/flow/SlopeGravity.cpp, its CPU reference
-// in tests/kernels/test_bed_geometry.cpp): per axis the minmod of the one-sided bed differences (next
-// to outside cells the one side's, limited by the next difference inward), the slope speed
-// sqrt(g s_max dx) from the steepest one-sided difference, g_n = g cos^2(theta) and g_p = g_n or g cos^4(theta) (-DDEPTH_COS4=1). Built with
-// -DSLOPE_CORRECTION=0 the gravities stay g, as on the host.
+// in tests/kernels/test_bed_geometry.cpp): per axis the limited bed slope of bed_rise (flow_common.cl),
+// the slope speed sqrt(g s_max dx) from the steepest one-sided difference, g_n = g cos^2(theta) and
+// g_p = g_n or g cos^4(theta) (-DDEPTH_COS4=1). Built with -DSLOPE_CORRECTION=0 the gravities stay g,
+// as on the host.
 #include "flow/flow_common.cl"
 
 #ifndef SLOPE_CORRECTION
@@ -14,29 +14,14 @@
 #define DEPTH_COS4 0
 #endif
 
-INLINE real minmod_slope(real a, real b) {
-  if (a * b <= (real)0) return (real)0;
-  return fabs(a) < fabs(b) ? a : b;
-}
-
 /// Limited slope of `f` at (i, j) along (di, dj), per unit length (SlopeGravity.cpp, limitedBedSlope).
 INLINE real bed_limited_slope(__constant const FlowParams* p, __global const uchar* mask, __global const real* f, int i,
                           int j, int di, int dj) {
   const int m = cell_inside(p, mask, i - di, j - dj), q = cell_inside(p, mask, i + di, j + dj);
-  const real c = f[cell_index(p, i, j)];
-  if (m && q) return minmod_slope(c - f[cell_index(p, i - di, j - dj)], f[cell_index(p, i + di, j + dj)] - c) / p->dx;
-  // Next to an outside cell: the one-sided difference limited by the next one inward.
-  if (q) {
-    const real d = f[cell_index(p, i + di, j + dj)] - c;
-    if (!cell_inside(p, mask, i + 2 * di, j + 2 * dj)) return d / p->dx;
-    return minmod_slope(d, f[cell_index(p, i + 2 * di, j + 2 * dj)] - f[cell_index(p, i + di, j + dj)]) / p->dx;
-  }
-  if (m) {
-    const real d = c - f[cell_index(p, i - di, j - dj)];
-    if (!cell_inside(p, mask, i - 2 * di, j - 2 * dj)) return d / p->dx;
-    return minmod_slope(d, f[cell_index(p, i - di, j - dj)] - f[cell_index(p, i - 2 * di, j - 2 * dj)]) / p->dx;
-  }
-  return (real)0;
+  const int mm = m && cell_inside(p, mask, i - 2 * di, j - 2 * dj), qq = q && cell_inside(p, mask, i + 2 * di, j + 2 * dj);
+  const real fm = m ? f[cell_index(p, i - di, j - dj)] : (real)0, fq = q ? f[cell_index(p, i + di, j + dj)] : (real)0;
+  const real fmm = mm ? f[cell_index(p, i - 2 * di, j - 2 * dj)] : (real)0, fqq = qq ? f[cell_index(p, i + 2 * di, j + 2 * dj)] : (real)0;
+  return bed_rise(fmm, mm, fm, m, f[cell_index(p, i, j)], fq, q, fqq, qq) / p->dx;
 }
 
 __kernel void bed_slope_fields(__constant const FlowParams* p, __global const uchar* mask, __global const int* tile_list,

@@ -122,22 +122,6 @@
 #define SOLID_SUPERCRITICAL_FACES 1
 #endif
 
-/// Change of the reconstructed bed across cell c (plus face minus minus face) along one axis, from
-/// the beds of its neighbours (bm, bp; m_in, p_in: inside the domain) and, next to an outside cell,
-/// of the next cell inward on the other side (bmm with mm_in, read only where m_in; bpp, pp_in).
-/// Inside, the minmod of the two one-sided differences. Next to an outside cell the one known
-/// difference, limited by the next difference inward: the outside continues the inside's slope (a
-/// plane stays exact), and a kink between the cell and its inner neighbour (a pit's wall beside the
-/// raster edge) is a kink, not the cell's slope. (The bare one-sided difference made a layer at
-/// rest in the edge cell beside an 18 m pit slide into it at 10 g: soak seed 14540127069293829764.)
-/// The same rule as limitedBedSlope (src/flow/SlopeGravity.cpp), which gives g_n and the slopes.
-INLINE real bed_rise(real bmm, int mm_in, real bm, int m_in, real bc, real bp, int p_in, real bpp, int pp_in) {
-  if (m_in && p_in) return bed_minmod(bc - bm, bp - bc);
-  if (p_in) return pp_in ? bed_minmod(bp - bc, bpp - bp) : bp - bc;
-  if (m_in) return mm_in ? bed_minmod(bc - bm, bm - bmm) : bc - bm;
-  return (real)0;
-}
-
 /// One side of a solid face: face thickness h, face bed z, normal and tangential
 /// velocity, the lateral pressure Pi(h') = max(0, a (h' + hf) - c0) for any thickness h' of the side,
 /// g_eff = (1 - gamma_eff) g_n of its cell, the weight of its material in its own fluid (for the
