@@ -229,8 +229,8 @@ std::string Simulation::summaryJson(const RunSummary& s, Ending ending) const {
     o << "],\n";
   }
   if (atRest_)
-    o << "  \"ended_at_rest\": \"kinetic energy below " << JsonNum{scene_.restFraction} << " of its peak "
-      << JsonNum{peakKinetic_} << " J\",\n";
+    o << "  \"ended_at_rest\": \"kinetic energy below " << scene_.restFraction << " of its peak "
+      << peakKinetic_ << " J\",\n";
   o << "  \"device\": \"" << jsonEscape(d.name) << "\",\n  \"platform\": \"" << jsonEscape(d.platformName) << "\",\n"
     << "  \"precision\": \"" << compute::precisionName(ctx_->precision()) << "\",\n"
     << "  \"grid\": {\"nx\": " << g.nx << ", \"ny\": " << g.ny << ", \"dx\": " << JsonNum{g.dx}

@@ -50,7 +50,7 @@ constexpr int kDefaultScenes = 40;
 // Base of the Debris sequence in CI. Not kDefaultBaseSeed: its first debris scenes include one that
 // fails (debris seed 12860602142559376500, a deep lake on a cliff with cos^4 depth pressure, which the
 // model's equations accelerate; see docs/robustness.md; 14540127069293829764 passes since the edge
-// cells' bed slope is limited, solid_bed.cl bed_rise), so the CI subset uses a base whose first
+// cells' bed slope is limited, bed_rise in flow_common.cl), so the CI subset uses a base whose first
 // scenes pass; soaks (TALUS_STRESS_BASE_SEED / _SCENES) find them.
 constexpr uint64_t kDefaultDebrisBaseSeed = 12345;
 

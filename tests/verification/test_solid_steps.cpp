@@ -134,7 +134,7 @@ TEST(SolidSteps, LayerInAPitStaysAtRest) {
 // (its cells i, j = 1..8: the edge cells i = 0 or j = 0 beside it have no neighbour beyond), filled
 // with solids to the level of the 0.3 m layer around it: the surface is level everywhere, so rest is
 // exact as in the pits above. The edge cells' bed has only one neighbour along the axis: its slope
-// is the one-sided difference limited by the next one inward (bed_rise, solid_bed.cl), 0 here. With
+// is the one-sided difference limited by the next one inward (bed_rise, flow_common.cl), 0 here. With
 // the bare one-sided difference the edge cells took the pit's wall as their own slope (20 m over a
 // cell) and slid into the pit (soak seed 14540127069293829764 in the stress suite: 10 g; here
 // |q_s| up to 4.7 m^2/s). g_n = g cos^2 (src/flow/SlopeGravity.cpp) takes the same limited slope:
