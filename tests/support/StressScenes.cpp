@@ -961,22 +961,68 @@ namespace {
 /// Host totals of a two-phase state.
 struct DebrisTotals {
   double volF = 0, volS = 0;  ///< [m^3]
-  double potential = 0;       ///< sum [rho_s h_s (b - bmin + h_s/2) + rho_f h_f (b - bmin + h_s + h_f/2)] dx^2 [kg m]
+  /// sum [rho_s h_s (b - bmin) + rho_s U_s / g + rho_f h_f (b - bmin + h_s + h_f/2)] dx^2 [kg m]
+  /// (solidPressureEnergy: U_s per unit solid density)
+  double potential = 0;
   int wetCells = 0;
 };
 
+/// The material constants of the solids' lateral pressure that the energy bound needs, per cell.
+struct SolidPressureLaw {
+  bool constantK = false;
+  double kConst = 1, rhoF = 1000;
+  /// No fluid in the scene: the dry granular model, whose energy is exact (runDebrisScene)
+  bool dry = false;
+  bool deltaFromPhi = true;
+  const std::vector<double>* delta = nullptr;  ///< bed friction angle [rad] where !deltaFromPhi
+  std::vector<double> gp;                       ///< the solver's pressure gravity per cell [m/s^2]
+};
+
+/// Internal energy per unit area and solid density [m^3/s^2] of a dry solid column of thickness h
+/// under the model's lateral pressure (kernels/flow/debris_stage.cl, solid_side, without fluid):
+/// p(h) = h Pi(h) with Pi = max(0, a h - c0), a = K g_p / 2, c0 = 2 c sqrt(K) / rho_s. For a
+/// barotropic pressure the energy of a column is U = h int^h Pi(h') / h' dh' (then h U' - U = p), so
+///   U = h (a (h - h0) - c0 ln(h / h0)) for h > h0 = c0 / a, and 0 below (cohesion holds it);
+/// a h^2 without cohesion (g h^2 / 2 for water: the centroid term of hydrostatic pressure). K is the
+/// smallest the law gives, the active Savage-Hutter value: the passive share a contraction adds is
+/// work the contraction pays and the extension does not get back.
+double solidPressureEnergy(double h, double K, double gp, double cohesion, double rhoS) {
+  if (!(h > 0)) return 0;
+  const double a = 0.5 * K * gp, c0 = 2 * cohesion * std::sqrt(std::max(K, 0.0)) / rhoS;
+  if (!(a > 0)) return 0;
+  if (!(c0 > 0)) return a * h * h;
+  const double h0 = c0 / a;
+  return h > h0 ? h * (a * (h - h0) - c0 * std::log(h / h0)) : 0.0;
+}
+
+/// Savage & Hutter's active coefficient (kernels/common/earth_pressure.cl at passive share 0).
+double activeEarthPressure(double phi, double delta) {
+  const double cp = std::cos(phi), cd = std::cos(delta);
+  return 2 / (cp * cp) * (1 - std::sqrt(std::max(0.0, 1 - cp * cp / (cd * cd)))) - 1;
+}
+
 DebrisTotals debrisTotals(const Grid& g, const std::vector<uint8_t>& mask, const std::vector<double>& bed, double bedMin,
-                          double rhoF, const std::vector<double>& h, const std::vector<double>& hs,
-                          const std::vector<double>& rhoS) {
+                          const SolidPressureLaw& law, const std::vector<double>& h, const std::vector<double>& hs,
+                          const std::vector<double>& rhoS, const std::vector<double>& phi,
+                          const std::vector<double>& cohesion) {
   long double vf = 0, vs = 0, pot = 0;
-  const double area = g.dx * g.dx;
+  const double area = g.dx * g.dx, rhoF = law.rhoF;
   DebrisTotals t;
   for (std::size_t k = 0; k < g.cells(); ++k) {
     if (!mask[k]) continue;
     const double z = bed[k] - bedMin;
     vf += static_cast<long double>(h[k] * area);
     vs += static_cast<long double>(hs[k] * area);
-    pot += static_cast<long double>((rhoS[k] * hs[k] * (z + 0.5 * hs[k]) + rhoF * h[k] * (z + hs[k] + 0.5 * h[k])) * area);
+    // The solids' own energy: without fluid in the scene the model's lateral-pressure law (the dry
+    // granular model conserves KE + g h b + U_s up to its dissipation); with fluid the hydrostatic
+    // energy of the mixture column (see runDebrisScene).
+    double u = 0.5 * kGravity * hs[k] * hs[k];
+    if (law.dry && hs[k] > 0) {
+      const double K = law.constantK ? law.kConst
+                                     : activeEarthPressure(phi[k], law.deltaFromPhi ? phi[k] : (*law.delta)[k]);
+      u = solidPressureEnergy(hs[k], K, law.gp[k], cohesion[k], rhoS[k]);
+    }
+    pot += static_cast<long double>((rhoS[k] * (hs[k] * z + u / kGravity) + rhoF * h[k] * (z + hs[k] + 0.5 * h[k])) * area);
     if (h[k] > 0 || hs[k] > 0) ++t.wetCells;
   }
   t.volF = static_cast<double>(vf);
@@ -1005,7 +1051,14 @@ DebrisTotals debrisTotals(const Grid& g, const std::vector<uint8_t>& mask, const
 /// energy by orders of magnitude):
 ///   E_kin(t) <= 2 (E_kin(0) + g max(0, P(0) - P(t))) + tiny,
 /// with E_kin the solver's kinetic energy in joules (both phases with their densities) and P the
-/// potential of both phases with their densities (solids under the fluid). Drag, Coulomb friction,
+/// potential of both phases with their densities (solids under the fluid). In a scene without fluid
+/// the model is the dry granular one, which has an exact energy: P's solid column term is then the
+/// energy of the model's own lateral pressure (solidPressureEnergy: K, g_p and cohesion), not the
+/// hydrostatic h_s / 2. (With the hydrostatic term, material with little or no lateral pressure,
+/// e.g. 1 MPa of cohesion, that slid down its bed onto a thicker column raised P while the model
+/// released energy: soak seed 14007166592872737771 failed at KE 5.8 times "released", for any dt.)
+/// With fluid the hydrostatic mixture term stays: the solids' pressure then grows with the fluid's
+/// depth (Pi ~ K (1 - gamma) g_p (h_s + h_f) / 2) and has no potential. Drag, Coulomb friction,
 /// Manning and shocks only dissipate, the exchange terms only move energy between the phases, so
 /// the factor 2 covers the slope-correction work (g_p, g_n < g, bounded by the released energy on
 /// the DEMs used) and the first-order splitting error of the stiff sources; tiny = 8 eps g P(0)
@@ -1029,7 +1082,19 @@ StressOutcome runDebrisScene(const StressScene& scene) {
   const double hDry = dbl ? s.hDry : static_cast<double>(static_cast<float>(s.hDry));
 
   std::vector<double> h = solver.h(), hs = solver.hs(), qx, qy, qsx, qsy;
-  const DebrisTotals t0 = debrisTotals(g, mask, bed, bedMin, rhoF, h, hs, solver.solidScalar(1));
+  SolidPressureLaw law;
+  law.constantK = s.debris.earthPressure == flow::EarthPressure::Constant;
+  law.kConst = s.debris.kConst;
+  law.rhoF = rhoF;
+  law.dry = std::all_of(scene.input.h.begin(), scene.input.h.end(), [](double x) { return x == 0; });
+  law.deltaFromPhi = s.debris.deltaFromPhi;
+  law.delta = &scene.input.delta;
+  law.gp = solver.gp();
+  auto totals = [&]() {
+    return debrisTotals(g, mask, bed, bedMin, law, h, hs, solver.solidScalar(1), solver.solidScalar(0),
+                        solver.solidScalar(3));
+  };
+  const DebrisTotals t0 = totals();
   const double ekin0 = solver.diagnostics().kinetic;
   double hMaxF = 0, hMaxS = 0;
   for (std::size_t k = 0; k < g.cells(); ++k) hMaxF = std::max(hMaxF, h[k]), hMaxS = std::max(hMaxS, hs[k]);
@@ -1114,7 +1179,7 @@ StressOutcome runDebrisScene(const StressScene& scene) {
       break;
     }
     markWet();
-    const DebrisTotals t = debrisTotals(g, mask, bed, bedMin, rhoF, h, hs, solver.solidScalar(1));
+    const DebrisTotals t = totals();
 
     // Volume balance of each phase.
     const double balF = t.volF + outF - t0.volF, balS = t.volS + outS - t0.volS;
@@ -1160,6 +1225,12 @@ StressOutcome runDebrisScene(const StressScene& scene) {
            " q_f (" + num(qx[c]) + ", " + num(qy[c]) + ") h_s " + num(hs[c]) + " q_s (" + num(qsx[c]) + ", " +
            num(qsy[c]) + ") bed " + num(bed[c]) + " (initial h_f " + num(scene.input.h[c]) + ", h_s " +
            num(scene.input.hs[c]) + ")");
+      if (std::getenv("TALUS_STRESS_DUMP")) {
+        for (std::size_t k = 0; k < g.cells(); ++k)
+          std::printf("cell %s bed %.4f hs0 %.4g hf0 %.4g | hs %.6g qs (%.4g %.4g) hf %.6g qf (%.4g %.4g)\n",
+                      cellText(g, k).c_str(), bed[k], scene.input.hs[k], scene.input.h[k], hs[k], qsx[k], qsy[k], h[k],
+                      qx[k], qy[k]);
+      }
       break;
     }
   }
