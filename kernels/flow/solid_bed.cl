@@ -238,16 +238,33 @@ INLINE real2 solid_face_state(SolidSide s, SolidApproach* a, real zs) {
   return hyd;
 }
 
+/// Lateral pressure Pi' of the face state h' of side s: the law's, Pi(h'), except for a
+/// supercritical arrival (a.w > 0), whose Bernoulli state solid_bernoulli_state built with the
+/// pressure gravity G frozen at the side's value: its pressure is the one that momentum balance
+/// integrates to, p' = p(h) + G (h'^2 - h^2) / 2, and Pi' = p' / h' (the law's own value for a
+/// cohesionless dry layer, p = a h^2). With the law's value instead, material without lateral
+/// pressure at its own thickness (cohesion above its overburden: G = 0) that met a rise of the
+/// height of its kinetic head got a thick, slow face state (h' = q / sqrt(2 e), e -> 0) that the law
+/// did press: the face saw a wave speed its cell never had, and its HLL flux drained several times
+/// the cell's content in one step (two-phase soak seeds 4445931888577538981, 5853659436162393912,
+/// 1481104073426978450: solids created where the emptied cell was clipped at zero; in float a rise
+/// of one rounding unit of the bed was enough).
+INLINE real face_pi(SolidSide s, SolidApproach a, real h) {
+  if (!(a.w > (real)0) || h == s.h) return side_pi(s, h);
+  if (!(h > (real)0)) return (real)0;
+  return fmax((real)0, side_pressure(s, s.h) + (real)0.5 * a.G * (h * h - s.h * s.h)) / h;
+}
+
 /// Bed-jump force of side s at a rise to zs, with its face state `st` (solid_face_state): the
-/// material's pressure on the step, p(h) - p(h'), and for a supercritical arrival the momentum its
-/// flow loses climbing it, h u^2 - h' u'^2, so that the face flux of the state at zs plus this term
-/// is the side's own flux (a steady flow over the step stays steady). `blk` as in rise_force; of a
-/// supercritical arrival nothing is blocked where it passes (or chokes), its whole column where its
-/// energy cannot lift it over the rise.
+/// material's pressure on the step, p(h) - p(h') (p(h') = h' face_pi), and for a supercritical
+/// arrival the momentum its flow loses climbing it, h u^2 - h' u'^2, so that the face flux of the
+/// state at zs plus this term is the side's own flux (a steady flow over the step stays steady).
+/// `blk` as in rise_force; of a supercritical arrival nothing is blocked where it passes (or
+/// chokes), its whole column where its energy cannot lift it over the rise.
 INLINE real solid_jump(SolidSide s, SolidApproach a, real2 st, real zs, Block* blk) {
   if (!(a.w > (real)0)) return rise_force(s, st.x, zs - s.z, blk);
   rise_force(s, st.x > (real)0 ? s.h : (real)0, zs - s.z, blk);
-  return side_pressure(s, s.h) - side_pressure(s, st.x) + s.h * s.un * s.un - st.x * st.y * st.y;
+  return side_pressure(s, s.h) - st.x * face_pi(s, a, st.x) + s.h * s.un * s.un - st.x * st.y * st.y;
 }
 
 /// Force (as a face-flux correction, < 0 along the fall) of the drop from side s's face bed to z* <
@@ -300,7 +317,7 @@ INLINE SolidFace solid_face(int m_in, SolidSide m, int p_in, SolidSide p, int ki
   const real2 sp = zs >= zp ? solid_face_state(p, &ap_f, zs) : (real2)(p.h, p.un);
   const real hm = sm.x, hp = sp.x;
   if (hm > (real)0 || hp > (real)0) {
-    const real pim = side_pi(m, hm), pip = side_pi(p, hp);
+    const real pim = face_pi(m, am_f, hm), pip = face_pi(p, ap_f, hp);
     const real2 s = wave_speeds(hm, sm.y, sqrt((real)2 * pim), hp, sp.y, sqrt((real)2 * pip));
     const FaceFlux r = hll_core(hm, sm.y, m.ut, hm * pim, hp, sp.y, p.ut, hp * pip, s);
     const int closed = wall || locked;

@@ -103,3 +103,44 @@ TEST(SolidFlowOverStep, SheetClimbsARiseTwiceItsThickness) {
 TEST(SolidFlowOverStep, LowLateralPressureLayerClimbsARiseAboveItsSurface) {
   expectSteady("K = 0.5, rise 1.2 m", 1.0, 8.0, 1.2, 0.5);
 }
+
+// A cohesive sheet whose cohesion takes all its lateral pressure at its own thickness (Bell's
+// reduction: Pi = max(0, K g h / 2 - 2 c sqrt(K) / rho_s) = 0 below h0 = 1 m) runs at 0.5 m/s into a
+// rise of 0.99 of its kinetic head u^2 / 2g. Without lateral pressure it arrives supercritically
+// and its Bernoulli face state keeps its discharge at the speed the climb leaves it,
+// u' = sqrt(u^2 - 2 g dz) = 0.05 m/s: h' = q / u' = 5 m, above h0, where the law would press. The
+// face takes the pressure the state was built with (none: face_pi, kernels/flow/solid_bed.cl);
+// with the law's pressure at h' its wave speed (6 m/s) drained three times the front cell's
+// content in one step and the clipped cell created solids (two-phase soak seeds
+// 4445931888577538981, 5853659436162393912, 1481104073426978450). Reference: conservation of the
+// solids between walls, every step (1e-12 relative covers double rounding of 60 cells over the
+// run; measured 2e-16, and 6.7e-2 with the law's pressure at the face).
+TEST(SolidFlowOverStep, PressureFreeSheetAtItsKineticHeadKeepsItsVolume) {
+  const Grid grid = Grid::make(60, 1, 1.0);
+  const double h = 0.5, u = 0.5, k = 1.0;
+  const double dz = 0.99 * u * u / (2 * kGravity);
+  test::SolidMaterial mat;
+  mat.delta = 0.0;
+  mat.rhoS = 2000.0;
+  mat.cohesion = 0.5 * k * kGravity * 1.0 * mat.rhoS / (2 * std::sqrt(k));  // h0 = c0 / a = 1 m
+  fl::FlowInput in = test::debrisInput(grid, mat);
+  for (int i = 0; i < grid.nx; ++i) {
+    in.bed[i] = i >= 30 ? dz : 0.0;
+    if (i >= 10 && i < 30) in.hs[i] = h, in.qsx[i] = h * u;
+  }
+  fl::FlowSettings s = test::granularBetweenWalls(k);
+  fl::FlowSolver solver(test::testContext(compute::Precision::Double), grid, s);
+  solver.setInput(in);
+  const double v0 = test::readState(solver).volumeSolid(grid.dx);
+  double worst = 0;
+  int steps = 0;
+  test::advance(solver, test::RunLimits::until(4.0), [&](const fl::FlowSolver& sv) {
+    const auto st = test::readState(sv);
+    worst = std::max(worst, std::fabs(st.volumeSolid(grid.dx) / v0 - 1.0));
+    ++steps;
+    return true;
+  });
+  std::printf("  pressure-free sheet at its kinetic head: %d steps, worst relative volume error %.2e\n", steps, worst);
+  EXPECT_GT(steps, 10);
+  EXPECT_LT(worst, 1e-12);
+}
