@@ -521,6 +521,44 @@ struct Frame {
   bool split = false;  ///< dimensionally split time scheme: the CFL speed is per direction
 };
 
+/// Upper bound of the rate at which the slope-corrected shallow-water terms of a layer h (velocity
+/// q / h) over the bed b + under (under: the solids below a two-phase fluid, or none) can raise
+/// E_kin + g P: sum (g - g_p) h (u . grad eta)^+ + (g_n - g_p) h (u . grad b)^- dx^2 [m^5/s^3], with
+/// eta = b + under + h and centred differences (one-sided next to the boundary); see the energy
+/// tolerance in runStressScene.
+double slopeWorkRate(const Grid& g, const std::vector<uint8_t>& mask, const std::vector<double>& bed,
+                     const std::vector<double>* under, const std::vector<double>& h, const std::vector<double>& qx,
+                     const std::vector<double>& qy, const std::vector<double>& gp, const std::vector<double>& gn,
+                     double hDry) {
+  double rate = 0;
+  const double area = g.dx * g.dx;
+  auto inside = [&](int a, int c) { return a >= 0 && c >= 0 && a < g.nx && c < g.ny && mask[g.index(a, c)]; };
+  for (int j = 0; j < g.ny; ++j)
+    for (int i = 0; i < g.nx; ++i) {
+      const std::size_t k = g.index(i, j);
+      const double hk = h[k];
+      if (!mask[k] || !(hk > 0)) continue;
+      const double u = hk > hDry ? qx[k] / hk : 0.0, v = hk > hDry ? qy[k] / hk : 0.0;
+      const double dgp = kGravity - gp[k], dgn = gn[k] - gp[k];
+      if (!((dgp > 0 || dgn > 0) && (u != 0 || v != 0))) continue;
+      auto grad = [&](int di, int dj, bool eta) {
+        auto val = [&](int a, int c) {
+          const std::size_t q = g.index(a, c);
+          return bed[q] + (eta ? h[q] + (under ? (*under)[q] : 0.0) : 0.0);
+        };
+        const bool m = inside(i - di, j - dj), p = inside(i + di, j + dj);
+        if (m && p) return 0.5 * (val(i + di, j + dj) - val(i - di, j - dj)) / g.dx;
+        if (p) return (val(i + di, j + dj) - val(i, j)) / g.dx;
+        if (m) return (val(i, j) - val(i - di, j - dj)) / g.dx;
+        return 0.0;
+      };
+      const double ue = u * grad(1, 0, true) + v * grad(0, 1, true);
+      const double ub = u * grad(1, 0, false) + v * grad(0, 1, false);
+      rate += (dgp * hk * std::max(ue, 0.0) + dgn * hk * std::max(-ub, 0.0)) * area;
+    }
+  return rate;
+}
+
 Totals totals(const Frame& f, const std::vector<double>& h, const std::vector<double>& qx,
               const std::vector<double>& qy) {
   Totals t;
@@ -555,28 +593,9 @@ Totals totals(const Frame& f, const std::vector<double>& h, const std::vector<do
           if (a >= 0 && c >= 0 && a < g.nx && c < g.ny && f.mask[g.index(a, c)]) gmax = std::max(gmax, f.gp[g.index(a, c)]);
         }
         t.speedFace = std::max(t.speedFace, cflSpeed(gmax));
-        // Slope work: (g - g_p) h (u . grad eta)^+ + (g_n - g_p) h (u . grad b)^-, with centred
-        // differences (one-sided next to the boundary) of eta = h + b and b.
-        const double dgp = kGravity - f.gpHost[k], dgn = f.gnHost[k] - f.gpHost[k];
-        if ((dgp > 0 || dgn > 0) && (u != 0 || v != 0)) {
-          auto grad = [&](int di, int dj, bool eta) {
-            auto inside = [&](int a, int c) { return a >= 0 && c >= 0 && a < g.nx && c < g.ny && f.mask[g.index(a, c)]; };
-            auto val = [&](int a, int c) {
-              const std::size_t q = g.index(a, c);
-              return f.bed[q] + (eta ? h[q] : 0.0);
-            };
-            const bool m = inside(i - di, j - dj), p = inside(i + di, j + dj);
-            if (m && p) return 0.5 * (val(i + di, j + dj) - val(i - di, j - dj)) / g.dx;
-            if (p) return (val(i + di, j + dj) - val(i, j)) / g.dx;
-            if (m) return (val(i, j) - val(i - di, j - dj)) / g.dx;
-            return 0.0;
-          };
-          const double ue = u * grad(1, 0, true) + v * grad(0, 1, true);
-          const double ub = u * grad(1, 0, false) + v * grad(0, 1, false);
-          t.slopeWorkRate += (dgp * hk * std::max(ue, 0.0) + dgn * hk * std::max(-ub, 0.0)) * area;
-        }
       }
     }
+  t.slopeWorkRate = slopeWorkRate(g, f.mask, f.bed, nullptr, h, qx, qy, f.gpHost, f.gnHost, f.hDry);
   t.volume = static_cast<double>(volume);
   t.kinetic = static_cast<double>(kinetic);
   t.potential = static_cast<double>(potential);
@@ -1049,7 +1068,7 @@ DebrisTotals debrisTotals(const Grid& g, const std::vector<uint8_t>& mask, const
 /// redistributes momentum with a density-dependent weight; an exact released-energy budget would need
 /// all of those terms per cell. Instead a generous bound that still catches instabilities (which grow
 /// energy by orders of magnitude):
-///   E_kin(t) <= 2 (E_kin(0) + g max(0, P(0) - P(t))) + tiny,
+///   E_kin(t) <= 2 (E_kin(0) + g max(0, P(0) - P(t)) + W_f) + tiny,
 /// with E_kin the solver's kinetic energy in joules (both phases with their densities) and P the
 /// potential of both phases with their densities (solids under the fluid). In a scene without fluid
 /// the model is the dry granular one, which has an exact energy: P's solid column term is then the
@@ -1059,9 +1078,14 @@ DebrisTotals debrisTotals(const Grid& g, const std::vector<uint8_t>& mask, const
 /// released energy: soak seed 14007166592872737771 failed at KE 5.8 times "released", for any dt.)
 /// With fluid the hydrostatic mixture term stays: the solids' pressure then grows with the fluid's
 /// depth (Pi ~ K (1 - gamma) g_p (h_s + h_f) / 2) and has no potential. Drag, Coulomb friction,
-/// Manning and shocks only dissipate, the exchange terms only move energy between the phases, so
-/// the factor 2 covers the slope-correction work (g_p, g_n < g, bounded by the released energy on
-/// the DEMs used) and the first-order splitting error of the stiff sources; tiny = 8 eps g P(0)
+/// Manning and shocks only dissipate, the exchange terms only move energy between the phases. W_f is
+/// the fluid's slope work, rho_f times the single-phase check's W over the mixture surface
+/// (slopeWorkRate): the work its g_p < g pressure and its (g_p - g_n) h_f grad b source can do
+/// against the g-weighted P; with cos^4 it is what accelerates a lake on a slope (a lake at rest is
+/// not an equilibrium of those equations, spec section 1; soak seeds 12860602142559376500 and
+/// 8017601764101274024 exceeded the bound without it). The factor 2 covers the solids' slope
+/// correction (g_n < g, bounded by the released energy on the DEMs used) and the first-order
+/// splitting error of the stiff sources; tiny = 8 eps g P(0)
 /// sqrt(step) is the rounding noise of P (as in the single-phase check).
 StressOutcome runDebrisScene(const StressScene& scene) {
   StressOutcome out;
@@ -1081,7 +1105,7 @@ StressOutcome runDebrisScene(const StressScene& scene) {
     if (mask[k]) bedMin = std::min(bedMin, bed[k]);
   const double hDry = dbl ? s.hDry : static_cast<double>(static_cast<float>(s.hDry));
 
-  std::vector<double> h = solver.h(), hs = solver.hs(), qx, qy, qsx, qsy;
+  std::vector<double> h = solver.h(), hs = solver.hs(), qx = solver.qx(), qy = solver.qy(), qsx, qsy;
   SolidPressureLaw law;
   law.constantK = s.debris.earthPressure == flow::EarthPressure::Constant;
   law.kConst = s.debris.kConst;
@@ -1096,6 +1120,11 @@ StressOutcome runDebrisScene(const StressScene& scene) {
   };
   const DebrisTotals t0 = totals();
   const double ekin0 = solver.diagnostics().kinetic;
+  // The fluid's slope work (as the single-phase check's W): its momentum has the pressure at g_p
+  // over the mixture surface and (g_p - g_n) h_f grad b (debris_stage.cl), which with cos^4
+  // (g_p < g_n) accelerates a lake on a slope: the spec's price of the slope-aligned pressure.
+  const flow::SlopeGravity sg = flow::computeSlopeGravity(g, scene.input.bed, scene.input.mask, s);
+  double slopeWork = 0;  // [J]
   double hMaxF = 0, hMaxS = 0;
   for (std::size_t k = 0; k < g.cells(); ++k) hMaxF = std::max(hMaxF, h[k]), hMaxS = std::max(hMaxS, hs[k]);
   std::vector<uint8_t> everWet(g.cells(), 0);
@@ -1139,6 +1168,7 @@ StressOutcome runDebrisScene(const StressScene& scene) {
       break;
     }
 
+    const double rateBefore = rhoF * slopeWorkRate(g, mask, bed, &hs, h, qx, qy, sg.gp, sg.gn, hDry);
     solver.step(dt);
     ++out.steps;
     const flow::FlowDiagnostics& dg = solver.diagnostics();
@@ -1207,10 +1237,13 @@ StressOutcome runDebrisScene(const StressScene& scene) {
     }
 
     // Kinetic energy: the generous bound documented above.
+    slopeWork += dt * std::max(rateBefore, rhoF * slopeWorkRate(g, mask, bed, &hs, h, qx, qy, sg.gp, sg.gn, hDry));
     const double released = std::max(0.0, kGravity * (t0.potential - t.potential));
-    const double bound = 2 * (ekin0 + released) + 8 * eps * kGravity * t0.potential * std::sqrt(static_cast<double>(st)) + 1e-300;
+    const double bound = 2 * (ekin0 + released + slopeWork) +
+                         8 * eps * kGravity * t0.potential * std::sqrt(static_cast<double>(st)) + 1e-300;
     out.energyRatio = std::max(out.energyRatio, dg.kinetic / bound);
-    if (ekin0 + released > 0) out.energyGainFraction = std::max(out.energyGainFraction, dg.kinetic / (ekin0 + released));
+    if (ekin0 + released + slopeWork > 0)
+      out.energyGainFraction = std::max(out.energyGainFraction, dg.kinetic / (ekin0 + released + slopeWork));
     if (!(dg.kinetic <= bound)) {
       // Where: the cell with the largest kinetic energy density.
       std::size_t c = 0;
@@ -1220,8 +1253,8 @@ StressOutcome runDebrisScene(const StressScene& scene) {
                          (hs[k] > hDry ? (qsx[k] * qsx[k] + qsy[k] * qsy[k]) / hs[k] : 0.0) * 2000.0;
         if (e > best) best = e, c = k;
       }
-      fail("kinetic energy " + num(dg.kinetic) + " J exceeds 2 (E_kin(0) + g dP) + rounding = 2 (" + num(ekin0) + " + " +
-           num(released) + ") + ... = " + num(bound) + " J; most energetic " + cellText(g, c) + ": h_f " + num(h[c]) +
+      fail("kinetic energy " + num(dg.kinetic) + " J exceeds 2 (E_kin(0) + g dP + W_f) + rounding = 2 (" + num(ekin0) + " + " +
+           num(released) + " + " + num(slopeWork) + ") + ... = " + num(bound) + " J; most energetic " + cellText(g, c) + ": h_f " + num(h[c]) +
            " q_f (" + num(qx[c]) + ", " + num(qy[c]) + ") h_s " + num(hs[c]) + " q_s (" + num(qsx[c]) + ", " +
            num(qsy[c]) + ") bed " + num(bed[c]) + " (initial h_f " + num(scene.input.h[c]) + ", h_s " +
            num(scene.input.hs[c]) + ")");
