@@ -49,8 +49,9 @@ namespace {
 constexpr uint64_t kDefaultBaseSeed = 0x7A1A5EED2024ull;
 constexpr int kDefaultScenes = 40;
 // Base of the Debris sequence in CI. Not kDefaultBaseSeed: its first debris scenes include one that
-// fails (debris seed 12860602142559376500, a deep lake on a cliff with cos^4 depth pressure, which the
-// model's equations accelerate; see docs/robustness.md; 14540127069293829764 passes since the edge
+// fails (debris seed 1355826582887882713, a 50 m solid column at the foot of a coarsely resolved
+// ramp, docs/robustness.md, "Two-phase soaks on new bases"; 12860602142559376500, a cos^4 lake on a
+// cliff, passes since the bound has the fluid's slope work, and 14540127069293829764 since the edge
 // cells' bed slope is limited, bed_rise in flow_common.cl), so the CI subset uses a base whose first
 // scenes pass; soaks (TALUS_STRESS_BASE_SEED / _SCENES) find them.
 constexpr uint64_t kDefaultDebrisBaseSeed = 12345;
