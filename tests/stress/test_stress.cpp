@@ -470,3 +470,24 @@ TEST(StressRegression, DryGranularEnergyIsTheModelsOwn) {
   if (envSet("TALUS_STRESS_DEBRIS_SEED") || envSet("TALUS_STRESS_SEED")) GTEST_SKIP() << "one seeded scene only";
   EXPECT_TRUE(runDebrisSeed(14007166592872737771ull, true));
 }
+
+// H. Two-phase energy bound with cos^4 depth pressure: a deep lake (10.7 m) on cliffs (68x23 cells of
+// 18 m), fluid only. With g_p = g cos^4 < g_n the fluid's (g_p - g_n) h_f grad b accelerates a lake at
+// rest (spec section 1: the price of the slope-aligned pressure); the bound had no term for that work
+// and the scene failed at step 1 with nothing released. The bound now adds W_f, the fluid's slope
+// work (slopeWorkRate, as the single-phase check's W): 95 steps at 0.37 of the slack.
+TEST(StressRegression, Cos4LakeOnACliffIsPaidBySlopeWork) {
+  if (envSet("TALUS_STRESS_DEBRIS_SEED") || envSet("TALUS_STRESS_SEED")) GTEST_SKIP() << "one seeded scene only";
+  EXPECT_TRUE(runDebrisSeed(12860602142559376500ull, true));
+}
+
+// I. Solids created at a pressure-free supercritical face: a cohesive mixture (27 kPa, K = 3) whose
+// cohesion takes all its lateral pressure met, in float over a bed at 2397 m, a face-bed rise of one
+// rounding unit at the height of its kinetic head; its Bernoulli face state was 25 times its cell's
+// thickness and the law pressed it, so the face drained three times the cell's content and the
+// clipped cell created 2.4 % of the solids. Fixed by face_pi (kernels/flow/solid_bed.cl); the
+// physical form of the case is SolidFlowOverStep.PressureFreeSheetAtItsKineticHeadKeepsItsVolume.
+TEST(StressRegression, PressureFreeSupercriticalFaceKeepsTheSolidsVolume) {
+  if (envSet("TALUS_STRESS_DEBRIS_SEED") || envSet("TALUS_STRESS_SEED")) GTEST_SKIP() << "one seeded scene only";
+  EXPECT_TRUE(runDebrisSeed(4445931888577538981ull, true));
+}
