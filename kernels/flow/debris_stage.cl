@@ -128,16 +128,23 @@ INLINE real fluid_surface_seen(Prim2 n, int n_in, Prim2 c, real h_dry) {
 }
 
 /// MUSCL reconstruction of both phases of cell c (zero slopes next to outside cells), with the rise
-/// of its solids' bed (bed_rise, solid_bed.cl, point 2). The fluid is
-/// first order on and next to the particle bed: its bed is then flat within each cell, so every bed
-/// force on the fluid there is a face correction that the particles take in full (no bed slope
-/// inside a cell without particles, which nothing could take the reaction of).
+/// of its solids' bed (bed_rise, solid_bed.cl, point 2). The fluid is reconstructed as the water
+/// is (reconstruct_surface, flow_common.cl: its surface with the run's limiter over the minmod of
+/// its bed b + h_s, the thickness slope bounded), first order at its wet/dry fronts and on and next
+/// to the particle bed: its bed is then flat within each cell, so every bed force on the fluid there
+/// is a face correction that the particles take in full (no bed slope inside a cell without
+/// particles, which nothing could take the reaction of). (Before 2026-12-07 it limited its thickness
+/// and its surface apart, `reconstruct`, whose implied face beds rise falsely on steep, coarsely
+/// resolved beds: fluid on cliffs gained energy, two-phase soak seed 6916895877032760343, the
+/// mechanism the water's reconstruction was built against. Second order at its fronts, as the water
+/// has it, broke the momentum balance of water and particle bed by 1.3e-12 of the momentum,
+/// ParticleBed.MomentumOfWaterAndBlockIsConserved, for a reason not traced.)
 INLINE Faces2 reconstruct2(Prim2 m, int m_in, Prim2 c, Prim2 p, int p_in, real rise) {
   const Prim s0 = {c.hs, c.es, c.us, c.vs}, sm = {m.hs, m.es, m.us, m.vs}, sp = {p.hs, p.es, p.us, p.vs};
   const Prim f0 = {c.hf, c.ef, c.uf, c.vf}, fm = {m.hf, m.ef, m.uf, m.vf}, fp = {p.hf, p.ef, p.uf, p.vf};
   const int on_bed = c.hc > (real)0 || (m_in && m.hc > (real)0) || (p_in && p.hc > (real)0);
   CellFaces s = reconstruct(sm, m_in, s0, sp, p_in);
-  const CellFaces f = reconstruct(fm, m_in && !on_bed, f0, fp, p_in && !on_bed);
+  const CellFaces f = reconstruct_surface(fm, m_in && !on_bed && m.hf > (real)0, f0, fp, p_in && !on_bed && p.hf > (real)0);
   // The solids' bed: reconstructed whatever the solids around (solid_bed.cl, point 2).
   s.e_lo = c.es - (real)0.5 * rise;
   s.e_hi = c.es + (real)0.5 * rise;
