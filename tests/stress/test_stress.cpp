@@ -491,3 +491,13 @@ TEST(StressRegression, PressureFreeSupercriticalFaceKeepsTheSolidsVolume) {
   if (envSet("TALUS_STRESS_DEBRIS_SEED") || envSet("TALUS_STRESS_SEED")) GTEST_SKIP() << "one seeded scene only";
   EXPECT_TRUE(runDebrisSeed(4445931888577538981ull, true));
 }
+
+// J. Two-phase fluid on cliffs: fluid only, MC, 13x7 cells of 1.3 m over cliffs. The two-phase fluid
+// limited its thickness and its surface apart (reconstruct), whose implied face beds rise falsely on
+// steep coarse beds (mechanism E above); kinetic energy passed twice the released energy at step 21,
+// also at smaller dt. It now reconstructs as the water does (reconstruct_surface, first order at its
+// wet/dry fronts): 153 steps at 0.42 of the slack.
+TEST(StressRegression, TwoPhaseFluidOnCliffsReconstructsAsWater) {
+  if (envSet("TALUS_STRESS_DEBRIS_SEED") || envSet("TALUS_STRESS_SEED")) GTEST_SKIP() << "one seeded scene only";
+  EXPECT_TRUE(runDebrisSeed(6916895877032760343ull, true));
+}
