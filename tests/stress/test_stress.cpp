@@ -310,6 +310,12 @@ void runRegressions(const std::vector<uint64_t>& seeds, const std::string& schem
   for (uint64_t seed : seeds) runSeed(seed, true, scheme);
 }
 
+/// The two-phase form of runRegressions: each debris seed runs verbosely and must pass.
+void runDebrisRegressions(const std::vector<uint64_t>& seeds) {
+  if (envSet("TALUS_STRESS_DEBRIS_SEED") || envSet("TALUS_STRESS_SEED")) GTEST_SKIP() << "one seeded scene only";
+  for (uint64_t seed : seeds) EXPECT_TRUE(runDebrisSeed(seed, true)) << "debris seed " << seed;
+}
+
 }  // namespace
 
 // A. The time step only sees the wave speeds (|u| + c); the bed-slope source accelerates thin
@@ -466,20 +472,14 @@ TEST(StressRegression, DebrisBedForceAtTheFootOfACliff) {
 // pressure, released the bed's drop: E_kin was 5.8 times the "released" energy, for any dt. The
 // bound now uses the model's own pressure energy in scenes without fluid (solidPressureEnergy,
 // tests/support/StressScenes.cpp); the scene's 141 steps pass at 0.13 of the slack.
-TEST(StressRegression, DryGranularEnergyIsTheModelsOwn) {
-  if (envSet("TALUS_STRESS_DEBRIS_SEED") || envSet("TALUS_STRESS_SEED")) GTEST_SKIP() << "one seeded scene only";
-  EXPECT_TRUE(runDebrisSeed(14007166592872737771ull, true));
-}
+TEST(StressRegression, DryGranularEnergyIsTheModelsOwn) { runDebrisRegressions({14007166592872737771ull}); }
 
 // H. Two-phase energy bound with cos^4 depth pressure: a deep lake (10.7 m) on cliffs (68x23 cells of
 // 18 m), fluid only. With g_p = g cos^4 < g_n the fluid's (g_p - g_n) h_f grad b accelerates a lake at
 // rest (spec section 1: the price of the slope-aligned pressure); the bound had no term for that work
 // and the scene failed at step 1 with nothing released. The bound now adds W_f, the fluid's slope
 // work (slopeWorkRate, as the single-phase check's W): 95 steps at 0.37 of the slack.
-TEST(StressRegression, Cos4LakeOnACliffIsPaidBySlopeWork) {
-  if (envSet("TALUS_STRESS_DEBRIS_SEED") || envSet("TALUS_STRESS_SEED")) GTEST_SKIP() << "one seeded scene only";
-  EXPECT_TRUE(runDebrisSeed(12860602142559376500ull, true));
-}
+TEST(StressRegression, Cos4LakeOnACliffIsPaidBySlopeWork) { runDebrisRegressions({12860602142559376500ull}); }
 
 // I. Solids created at a pressure-free supercritical face: a cohesive mixture (27 kPa, K = 3) whose
 // cohesion takes all its lateral pressure met, in float over a bed at 2397 m, a face-bed rise of one
@@ -487,17 +487,11 @@ TEST(StressRegression, Cos4LakeOnACliffIsPaidBySlopeWork) {
 // thickness and the law pressed it, so the face drained three times the cell's content and the
 // clipped cell created 2.4 % of the solids. Fixed by face_pi (kernels/flow/solid_bed.cl); the
 // physical form of the case is SolidFlowOverStep.PressureFreeSheetAtItsKineticHeadKeepsItsVolume.
-TEST(StressRegression, PressureFreeSupercriticalFaceKeepsTheSolidsVolume) {
-  if (envSet("TALUS_STRESS_DEBRIS_SEED") || envSet("TALUS_STRESS_SEED")) GTEST_SKIP() << "one seeded scene only";
-  EXPECT_TRUE(runDebrisSeed(4445931888577538981ull, true));
-}
+TEST(StressRegression, PressureFreeSupercriticalFaceKeepsTheSolidsVolume) { runDebrisRegressions({4445931888577538981ull}); }
 
 // J. Two-phase fluid on cliffs: fluid only, MC, 13x7 cells of 1.3 m over cliffs. The two-phase fluid
 // limited its thickness and its surface apart (reconstruct), whose implied face beds rise falsely on
 // steep coarse beds (mechanism E above); kinetic energy passed twice the released energy at step 21,
 // also at smaller dt. It now reconstructs as the water does (reconstruct_surface, first order at its
 // wet/dry fronts): 153 steps at 0.42 of the slack.
-TEST(StressRegression, TwoPhaseFluidOnCliffsReconstructsAsWater) {
-  if (envSet("TALUS_STRESS_DEBRIS_SEED") || envSet("TALUS_STRESS_SEED")) GTEST_SKIP() << "one seeded scene only";
-  EXPECT_TRUE(runDebrisSeed(6916895877032760343ull, true));
-}
+TEST(StressRegression, TwoPhaseFluidOnCliffsReconstructsAsWater) { runDebrisRegressions({6916895877032760343ull}); }

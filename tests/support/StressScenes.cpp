@@ -14,6 +14,7 @@
 #include "core/Constants.hpp"
 #include "flow/SlopeGravity.hpp"
 #include "support/FlowScene.hpp"
+#include "support/GranularAnalytic.hpp"
 #include "support/TestDevice.hpp"
 
 namespace talus::test {
@@ -994,7 +995,7 @@ struct SolidPressureLaw {
   bool dry = false;
   bool deltaFromPhi = true;
   const std::vector<double>* delta = nullptr;  ///< bed friction angle [rad] where !deltaFromPhi
-  std::vector<double> gp;                       ///< the solver's pressure gravity per cell [m/s^2]
+  const std::vector<double>* gp = nullptr;     ///< pressure gravity per cell [m/s^2]
 };
 
 /// Internal energy per unit area and solid density [m^3/s^2] of a dry solid column of thickness h
@@ -1014,16 +1015,11 @@ double solidPressureEnergy(double h, double K, double gp, double cohesion, doubl
   return h > h0 ? h * (a * (h - h0) - c0 * std::log(h / h0)) : 0.0;
 }
 
-/// Savage & Hutter's active coefficient (kernels/common/earth_pressure.cl at passive share 0).
-double activeEarthPressure(double phi, double delta) {
-  const double cp = std::cos(phi), cd = std::cos(delta);
-  return 2 / (cp * cp) * (1 - std::sqrt(std::max(0.0, 1 - cp * cp / (cd * cd)))) - 1;
-}
-
 DebrisTotals debrisTotals(const Grid& g, const std::vector<uint8_t>& mask, const std::vector<double>& bed, double bedMin,
                           const SolidPressureLaw& law, const std::vector<double>& h, const std::vector<double>& hs,
                           const std::vector<double>& rhoS, const std::vector<double>& phi,
                           const std::vector<double>& cohesion) {
+  // phi and cohesion are read only where law.dry (the caller downloads them only then).
   long double vf = 0, vs = 0, pot = 0;
   const double area = g.dx * g.dx, rhoF = law.rhoF;
   DebrisTotals t;
@@ -1038,8 +1034,8 @@ DebrisTotals debrisTotals(const Grid& g, const std::vector<uint8_t>& mask, const
     double u = 0.5 * kGravity * hs[k] * hs[k];
     if (law.dry && hs[k] > 0) {
       const double K = law.constantK ? law.kConst
-                                     : activeEarthPressure(phi[k], law.deltaFromPhi ? phi[k] : (*law.delta)[k]);
-      u = solidPressureEnergy(hs[k], K, law.gp[k], cohesion[k], rhoS[k]);
+                                     : analytic::earthPressure(phi[k], law.deltaFromPhi ? phi[k] : (*law.delta)[k], false);
+      u = solidPressureEnergy(hs[k], K, (*law.gp)[k], cohesion[k], rhoS[k]);
     }
     pot += static_cast<long double>((rhoS[k] * (hs[k] * z + u / kGravity) + rhoF * h[k] * (z + hs[k] + 0.5 * h[k])) * area);
     if (h[k] > 0 || hs[k] > 0) ++t.wetCells;
@@ -1106,6 +1102,7 @@ StressOutcome runDebrisScene(const StressScene& scene) {
   const double hDry = dbl ? s.hDry : static_cast<double>(static_cast<float>(s.hDry));
 
   std::vector<double> h = solver.h(), hs = solver.hs(), qx = solver.qx(), qy = solver.qy(), qsx, qsy;
+  const flow::SlopeGravity sg = flow::computeSlopeGravity(g, scene.input.bed, scene.input.mask, s);
   SolidPressureLaw law;
   law.constantK = s.debris.earthPressure == flow::EarthPressure::Constant;
   law.kConst = s.debris.kConst;
@@ -1113,18 +1110,20 @@ StressOutcome runDebrisScene(const StressScene& scene) {
   law.dry = std::all_of(scene.input.h.begin(), scene.input.h.end(), [](double x) { return x == 0; });
   law.deltaFromPhi = s.debris.deltaFromPhi;
   law.delta = &scene.input.delta;
-  law.gp = solver.gp();
+  law.gp = &sg.gp;
+  const std::vector<double> none;
   auto totals = [&]() {
-    return debrisTotals(g, mask, bed, bedMin, law, h, hs, solver.solidScalar(1), solver.solidScalar(0),
-                        solver.solidScalar(3));
+    return debrisTotals(g, mask, bed, bedMin, law, h, hs, solver.solidScalar(1), law.dry ? solver.solidScalar(0) : none,
+                        law.dry ? solver.solidScalar(3) : none);
   };
   const DebrisTotals t0 = totals();
   const double ekin0 = solver.diagnostics().kinetic;
   // The fluid's slope work (as the single-phase check's W): its momentum has the pressure at g_p
   // over the mixture surface and (g_p - g_n) h_f grad b (debris_stage.cl), which with cos^4
-  // (g_p < g_n) accelerates a lake on a slope: the spec's price of the slope-aligned pressure.
-  const flow::SlopeGravity sg = flow::computeSlopeGravity(g, scene.input.bed, scene.input.mask, s);
-  double slopeWork = 0;  // [J]
+  // (g_p < g_n) accelerates a lake on a slope: the spec's price of the slope-aligned pressure. The
+  // rate of the state at the start of each step (the end of the one before) and at its end.
+  auto fluidSlopeWorkRate = [&]() { return rhoF * slopeWorkRate(g, mask, bed, &hs, h, qx, qy, sg.gp, sg.gn, hDry); };
+  double slopeWork = 0, rateBefore = fluidSlopeWorkRate();  // [J], [W]
   double hMaxF = 0, hMaxS = 0;
   for (std::size_t k = 0; k < g.cells(); ++k) hMaxF = std::max(hMaxF, h[k]), hMaxS = std::max(hMaxS, hs[k]);
   std::vector<uint8_t> everWet(g.cells(), 0);
@@ -1168,7 +1167,6 @@ StressOutcome runDebrisScene(const StressScene& scene) {
       break;
     }
 
-    const double rateBefore = rhoF * slopeWorkRate(g, mask, bed, &hs, h, qx, qy, sg.gp, sg.gn, hDry);
     solver.step(dt);
     ++out.steps;
     const flow::FlowDiagnostics& dg = solver.diagnostics();
@@ -1237,7 +1235,9 @@ StressOutcome runDebrisScene(const StressScene& scene) {
     }
 
     // Kinetic energy: the generous bound documented above.
-    slopeWork += dt * std::max(rateBefore, rhoF * slopeWorkRate(g, mask, bed, &hs, h, qx, qy, sg.gp, sg.gn, hDry));
+    const double rateAfter = fluidSlopeWorkRate();
+    slopeWork += dt * std::max(rateBefore, rateAfter);
+    rateBefore = rateAfter;
     const double released = std::max(0.0, kGravity * (t0.potential - t.potential));
     const double bound = 2 * (ekin0 + released + slopeWork) +
                          8 * eps * kGravity * t0.potential * std::sqrt(static_cast<double>(st)) + 1e-300;
