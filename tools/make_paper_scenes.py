@@ -20,7 +20,8 @@ paper_flume_c26, paper_flume_c18 (P section 2, the laboratory flume), grid 1 cm:
   - alpha_s = 0.45: solids 0.09 m, fluid 0.11 m per block cell; f_sc = f_fc = 1 (all particles);
   - material (1) c = 26.7 kPa, phi = 28 deg; (2) c = 18.3 kPa, phi = 27 deg; rho_s = 2400,
     rho_f = 1000, E = 21.6 MPa, K = 13.8 MPa -> nu = (3K - E) / (6K) = 0.239, psi = 0,
-    alpha_Pi = beta_Pi = 1, sound speed 600 m/s, B = 0, a = 1, b = 10, M = 2.4, n = 0.1;
+    alpha_Pi = beta_Pi = 1, artificial stress eps_0 = 0.3 (Gray et al. 2001; the paper gives no value),
+    sound speed 600 m/s, B = 0, a = 1, b = 10, M = 2.4, n = 0.1;
     bed friction = phi (not given by the spec).
 paper_setup1_{A,B,C}, paper_setup2_{A,B,C} (P section 3, numerical tests), grid 10 m:
   - setup 1: a 30 deg planar slope 600 m long (horizontally, as data/block_slide) into a flat plain;
@@ -130,6 +131,7 @@ Dilatancy Angle=0
 Sound Speed=600
 Artificial Viscosity Alpha=1
 Artificial Viscosity Beta=1
+Artificial Stress Epsilon=0.3
 [Time]
 # {time_note}
 End Time={end_min:.4g}

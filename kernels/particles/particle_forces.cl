@@ -15,19 +15,27 @@
 // particle_stress), A the area a particle stands for, m its mass. With C = I and A_j = m_j / rhoA_j
 // this is the usual sum_j m_j (N_i + N_j) g_ij / (rhoA_i rhoA_j), P.78.
 // The regularising terms:
-//   dv_i/dt += sum_j m_j f_ij^n R_ij . G_ij - sum_j m_j Pi_ij g_ij,   G_ij = (C_i + C_j) / 2 g_ij,
+//   dv_i/dt += sum_j m_j f_ij^n R_ij . g_ij - sum_j m_j Pi_ij g_ij,   g_ij = grad_i W_ij,
 // - Pi_ij (Monaghan 1992): for approaching pairs, mu = h v_ij . x_ij / (r^2 + 0.01 h^2) < 0,
 //   Pi_ij = (-alpha c mu + beta mu^2) / mean(rhoA), a pressure-like repulsion (Pi_ij >= 0 pushes the
 //   pair apart) along the plain kernel gradient g_ij, as Monaghan has it: the pair's power is
 //   -m_i m_j Pi_ij v_ij . g_ij <= 0 (g_ij is x_ij times W'(r)/r < 0 and v_ij . x_ij < 0), so the
-//   viscosity only ever takes energy. (Until 2026-12-05 it acted along G_ij like the artificial stress.
-//   Where C departs from I, G_ij has a part across x_ij whose work has either sign: in two avaKot
+//   viscosity only ever takes energy. (Until 2026-12-05 it acted along the corrected gradient
+//   G_ij = (C_i + C_j) / 2 g_ij. Where C departs from I, G_ij has a part across x_ij whose work has
+//   either sign: in two avaKot
 //   runs a particle reached 282 m/s at 24 s, and the viscosity's tally fell by 1.6e11 J within 6 s,
 //   i.e. it gave that energy to the flow. C also amplifies g_ij up to 1 / (2 d) = 50 times where a
 //   particle's neighbours nearly line up, which the viscosity's stiffness need not follow.)
 // - R_ij = R_i + R_j (Gray, Monaghan & Swift 2001): in the principal frame of N_i / rhoA_i^2, each
 //   tensile principal value s > 0 gives -eps s, compressive ones 0; rotated back. f_ij = W_ij / W(dp),
-//   dp the mean particle spacing. It acts only in tension, against the tensile clumping instability.
+//   dp the mean particle spacing. It acts only in tension, against the tensile clumping instability,
+//   along the plain gradient g_ij as Gray et al. (and spec P.78) have it. (Until 2026-12-07 along
+//   G_ij: on the smooth 40-degree plane of TerrainRoughness.ParticleBlockOnANoisyPlaneStaysBelowFreeFall
+//   with alpha_Pi = 0.1 a stress-free block's particles then left it at 50 m/s while its centre of
+//   mass slid at free fall; along g_ij the deviation stays below 2 m/s.) Its work is not returned
+//   over a cycle of tension (it is not the adjoint of the strain rate): an undamped elastic block
+//   breathing in and out of tension gains 65 times its energy in 10 s with eps = 0.3 and keeps it
+//   without (test_particle_energy.cpp), so it is off by default (eps = 0; docs/particles.md).
 // Energy of the regularising terms: the viscous and the artificial-stress accelerations also go to
 // rows 1-2 and 3-4 of `tally` (rows of p->count entries), where particle_integrate turns them into
 // their work over the sub-step (see there).
@@ -36,7 +44,7 @@
 
 /// One particle's sums over its neighbours (particle_forces below).
 typedef struct {
-  real accx, accy;  // artificial stress, sum_j m_j f^n R_ij . G_ij
+  real accx, accy;  // artificial stress, sum_j m_j f^n R_ij . g_ij
   real avx, avy;    // artificial viscosity, -sum_j m_j Pi_ij g_ij
   real fx, fy;      // stress term, sum_j A_j (N_i C_i + N_j C_j) g_ij
 } ForceSums;
@@ -76,11 +84,10 @@ INLINE void add_pair(__constant const ParticleParams* p, ForceSums* acc, int i, 
     pi = (-p->alpha_pi * p->sound_speed * mu + p->beta_pi * mu * mu) / ((real)0.5 * (rhoA[i] + rhoA[j]));
   }
   if (txx != (real)0 || tyy != (real)0 || txy != (real)0 || pi != (real)0) {
-    const real c00 = (real)0.5 * (ai00 + bj00), c01 = (real)0.5 * (ai01 + bj01), c11 = (real)0.5 * (ai11 + bj11);
-    const real gx = c00 * g0.x + c01 * g0.y, gy = c01 * g0.x + c11 * g0.y;
-    acc->accx += m[j] * (txx * gx + txy * gy);
-    acc->accy += m[j] * (txy * gx + tyy * gy);
-    acc->avx -= m[j] * pi * g0.x;  // the viscosity along the plain gradient (header)
+    // Both along the plain kernel gradient (header).
+    acc->accx += m[j] * (txx * g0.x + txy * g0.y);
+    acc->accy += m[j] * (txy * g0.x + tyy * g0.y);
+    acc->avx -= m[j] * pi * g0.x;
     acc->avy -= m[j] * pi * g0.y;
   }
 }

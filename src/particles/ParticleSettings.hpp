@@ -11,8 +11,13 @@ struct ParticleSettings {
   double soundSpeed = 0;         ///< c_sound [m/s] for the time step and artificial viscosity; 0: elastic c_p
   double smoothingFactor = 1.0;  ///< h = smoothingFactor * dx (paper: h = dx)
   double cfl = 0.2;              ///< dt_p = cfl h / (c + |v|max)
-  double alphaPi = 1.0, betaPi = 1.0;  ///< Monaghan artificial viscosity (P.83-P.84)
-  double epsArt = 0.3;           ///< Gray-Monaghan artificial stress epsilon_0 (P.85)
+  /// Monaghan artificial viscosity (P.83-P.84), at Bui et al.'s (2008) values for soils; the paper's
+  /// scenes set its alpha_Pi = beta_Pi = 1.
+  double alphaPi = 0.1, betaPi = 0.0;
+  /// Gray-Monaghan artificial stress epsilon_0 (P.85), off: the kernel-corrected forces need no remedy
+  /// for the tensile instability, and the term's work is an energy source (docs/particles.md; Gray et
+  /// al. 2001 use 0.3 with n = 4, which the paper's scenes set).
+  double epsArt = 0.0;
   double nArt = 4;               ///< its exponent n
   double dilatancy = 0;          ///< psi [rad]
   double epsCrit = 0.1;          ///< critical strain of the cohesion degradation (P.26)

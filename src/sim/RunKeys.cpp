@@ -156,9 +156,13 @@ void addParticleKeys(KeyRegistry& r) {
               "c of the time step and artificial viscosity; 0: elastic sqrt(E / (rho (1 - nu^2))), plane stress")
       << real("Smoothing Length Factor", "1", "-", 0.5, 3, "SPH smoothing length h in cells (paper: 1)")
       << real("Particle CFL", "0.2", "-", 0.01, 1, "particle sub-step dt = CFL h / (c + |v|max)")
-      << real("Artificial Viscosity Alpha", "1", "-", 0, 10, "alpha_Pi of Monaghan's artificial viscosity (P.83)")
-      << real("Artificial Viscosity Beta", "1", "-", 0, 10, "beta_Pi of Monaghan's artificial viscosity (P.83)")
-      << real("Artificial Stress Epsilon", "0.3", "-", 0, 1, "epsilon_0 of the artificial stress against tensile clumping (P.85)")
+      << real("Artificial Viscosity Alpha", "0.1", "-", 0, 10,
+              "alpha_Pi of Monaghan's artificial viscosity (P.83); default Bui et al. 2008, the paper's scenes use 1")
+      << real("Artificial Viscosity Beta", "0", "-", 0, 10,
+              "beta_Pi of Monaghan's artificial viscosity (P.83); default Bui et al. 2008, the paper's scenes use 1")
+      << real("Artificial Stress Epsilon", "0", "-", 0, 1,
+              "epsilon_0 of the artificial stress against tensile clumping (P.85); off by default (its work is an "
+              "energy source, docs/particles.md); Gray et al. 2001 and the paper's scenes use 0.3")
       << real("Artificial Stress Exponent", "4", "-", 1, 8, "n of the artificial stress (P.86)")
       << real("PIC Fraction", "0", "-", 0, 1,
               "PIC share of the velocity the particles take from the exchange with the grid's fluid: 0 FLIP "

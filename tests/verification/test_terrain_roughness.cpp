@@ -204,6 +204,7 @@ namespace {
 struct NoisyBlockRun {
   double worstParticle = 0;  ///< largest particle speed over sqrt(2 g (top of the release - lowest bed reached))
   double worstCentre = 0;    ///< largest 3-D speed of the centre of mass over sqrt(2 g (its own drop))
+  double worstEnergy = 0;    ///< largest kinetic energy over (potential released + artificial stress work)
   double descended = 0;      ///< top of the release - lowest bed cell reached [m]
 };
 
@@ -273,6 +274,12 @@ NoisyBlockRun particleBlockOnNoisyPlane(double amplitude) {
     const double ux = px / m, uy = py / m, drop = z0 - centreHeight(st);
     if (drop > 10.0)
       r.worstCentre = std::max(r.worstCentre, std::sqrt(ux * ux + uy * uy * (1 + tanSlope * tanSlope)) / std::sqrt(2.0 * kGravity * drop));
+    // The whole block: its kinetic energy on the bed against what the bed surface released along the
+    // particles' own paths (both from particle_integrate.cl's exact bilinear bed), plus the artificial
+    // stress's work where it is on.
+    const particles::ParticleDiagnostics& d = solver.diagnostics();
+    if (top - lowestReached > 10.0)
+      r.worstEnergy = std::max(r.worstEnergy, d.kinetic / (d.potentialReleased + d.artificialStressWork));
   }
   r.descended = top - lowestReached;
   return r;
@@ -283,22 +290,31 @@ NoisyBlockRun particleBlockOnNoisyPlane(double amplitude) {
 // The particles on a rough plane (particle_integrate.cl): a stiff frictionless block, 2 m thick,
 // 8 x 10 cells, slides down the 40 deg plane with A = 0, 0.1, 0.25 and 0.5 m of noise (a lidar DEM's
 // to the roughness of test FrictionlessBlockOnANoisyPlaneGainsNoEnergy) until its front is 20 m from
-// the lower wall. Two references, checked from 10 m of descent on (before, the block's elastic
+// the lower wall, with the default numerical terms (artificial viscosity alpha_Pi = 0.1, no
+// artificial stress). Two references, checked from 10 m of descent on (before, the block's elastic
 // settling speeds dominate bounds near zero):
-// - energy of the centre of mass: the bed does no work on a frictionless block, the artificial
-//   viscosity only dissipates and the elastic energy of a stiff block is negligible, so its kinetic
-//   energy is at most the potential energy it released, M g dz_c; and it is at least that of its
-//   centre of mass, M |V_c|^2 / 2 (Cauchy-Schwarz), with V_c the 3-D velocity (the mean horizontal
-//   velocity, the vertical one along the mean 40 deg plane). So |V_c| <= sqrt(2 g dz_c), with dz_c
-//   from the DEM values of the cells under the particles. Tolerance 0.5 %: on the smooth plane, where
-//   the bound holds with equality up to the viscosity, the measure gives 1.0003 (the particles'
-//   positions inside their cells, averaged over 320 of them); with noise, sampling the noise under
-//   the particles adds at most A / sqrt(320) / 10 m = 0.3 % to the drop at 10 m, half that to the speed.
-// - each particle: no faster, horizontally, than free fall from the highest cell of the release to
-//   the lowest bed cell any particle has reached (a looser bound, as each particle's share of the
-//   block's energy may vary).
-// Measured, centre of mass: 1.0003 / 0.989 / 0.929 / 0.761; particles: 0.759 / 0.872 / 0.850 / 0.885
-// (the rough bed takes energy: a block thrown off a crest lands inelastically).
+// - the whole block's energy: the bed does no work on a frictionless block, the artificial viscosity
+//   only dissipates and the elastic energy is never negative, so the block's kinetic energy on the bed,
+//   sum m (|v|^2 + (v . grad b)^2) / 2, is at most the potential energy the bed surface released along
+//   the particles' own paths (plus the artificial stress's work, zero here). Tolerance 0.5 %: the
+//   symplectic step's energy oscillation (measured 0.9997 on the smooth plane, where the bound holds
+//   with equality up to the viscosity);
+// - the centre of mass: the block's kinetic energy is at least that of its centre of mass,
+//   M |V_c|^2 / 2 (Cauchy-Schwarz), with V_c the 3-D velocity (the mean horizontal velocity, the
+//   vertical one along the mean 40 deg plane). So |V_c| <= sqrt(2 g dz_c), with dz_c from the DEM
+//   values of the cells under the particles. Tolerance 0.5 %: on the smooth plane the measure gives
+//   1.0003 (the particles' positions inside their cells, averaged over 320 of them); with noise,
+//   sampling the noise under the particles adds at most A / sqrt(320) / 10 m = 0.3 % to the drop at
+//   10 m, half that to the speed.
+// Measured (largest values from 10 m of descent on): energy 0.9997 / 0.996 / 0.983 / 0.930 (at the
+// end 0.23 at A = 0.5: the rough bed takes energy, a block thrown off a crest lands inelastically and
+// rings); centre of mass 1.0000 / 0.989 / 0.926 / 0.765.
+// The largest single-particle speed over free fall from the top of the release to the lowest bed
+// reached is printed, not bounded: an elastic body need not share its energy evenly, and with the
+// literature's weak viscosity the block ringing on the 0.25 and 0.5 m bumps throws edge particles to
+// 1.11 and 1.59 times that speed (0.74 and 0.98 at A = 0 and 0.1) while the whole block holds less
+// than what it released (the paper's
+// alpha_Pi = beta_Pi = 1, the default until 2026-12-07, damped the ringing: 0.76 / 0.87 / 0.85 / 0.89).
 // Before the bed was one surface (particle_common.cl, bed_gradient; the force sampled a blend
 // of the cells' centred differences, which is not the gradient of any surface): the centre of mass
 // 1.0003 / 1.031 / (not run) / 1.120 at A = 0 / 0.1 / 0.25 / 0.5, faster than its own free fall by 3
@@ -309,12 +325,12 @@ NoisyBlockRun particleBlockOnNoisyPlane(double amplitude) {
 TEST(TerrainRoughness, ParticleBlockOnANoisyPlaneStaysBelowFreeFall) {
   for (const double amplitude : {0.0, 0.1, 0.25, 0.5}) {
     const NoisyBlockRun r = particleBlockOnNoisyPlane(amplitude);
-    std::printf("[ rough plane A = %.2f m, particles, curvature on ] centre of mass %.4f of its free fall, largest "
-                "particle speed %.3f of free fall, %.1f m descended\n",
-                amplitude, r.worstCentre, r.worstParticle, r.descended);
+    std::printf("[ rough plane A = %.2f m, particles, curvature on ] kinetic energy %.4f of the released, centre of mass "
+                "%.4f of its free fall, largest particle speed %.3f of free fall, %.1f m descended\n",
+                amplitude, r.worstEnergy, r.worstCentre, r.worstParticle, r.descended);
     EXPECT_GT(r.descended, 50.0) << "the block must slide down the plane, A = " << amplitude;
+    EXPECT_LT(r.worstEnergy, 1.005) << "A = " << amplitude;
     EXPECT_LT(r.worstCentre, 1.005) << "A = " << amplitude;
-    EXPECT_LT(r.worstParticle, 1.0) << "A = " << amplitude;
   }
 }
 

@@ -8,7 +8,9 @@ controls) with `talus run` and tabulates, per run, the share of the particle mas
 broken (c/c0 < 0.1) at the end, the mean c/c0, the deposit's downslope extent, the peak kinetic
 energy and the energy the artificial viscosity dissipated (summary.json). The variants change one
 numerical choice at a time, never the material:
-  - the artificial viscosity (alpha_Pi, beta_Pi): the paper's (1, 1), Bui et al.'s (0.1, 0), none (0, 0);
+  - the artificial viscosity (alpha_Pi, beta_Pi): the paper's (1, 1), Bui et al.'s (0.1, 0), none (0, 0),
+    each with the scenes' artificial stress (eps_0 = 0.3); and Talus's defaults ("default": Bui's
+    viscosity without artificial stress);
   - the cohesion c of scenario B across its regime boundary (60-120 kPa);
   - particles per cell (4, the scenes' value; 9) and the smoothing length (h = 1 and 1.5 cells).
 The particle layers are read with sqlite3; with GDAL's Python bindings (osgeo) the deposit's extent
@@ -37,17 +39,22 @@ SLOPE_FOOT_X = 600.0  # where the 30-degree slope of both setups ends [m from th
 def variants():
     """(name, scene, {run-file key: value}) of every run of the study."""
     out = []
+    # The scenes' artificial stress (eps_0 = 0.3) with each viscosity, and Talus's defaults (Bui's
+    # viscosity, no artificial stress: "default").
     av = {"paper": ("1", "1"), "bui": ("0.1", "0"), "none": ("0", "0")}
+    default = {"Artificial Viscosity Alpha": "0.1", "Artificial Viscosity Beta": "0", "Artificial Stress Epsilon": "0"}
     for setup in ("1", "2"):
         for c in ("60", "75", "85", "90", "120"):
             for tag, (a, b) in av.items():
                 out.append((f"s{setup}B_c{c}_av{tag}", f"paper_setup{setup}_B",
                             {"Initial Cohesion": c, "Artificial Viscosity Alpha": a, "Artificial Viscosity Beta": b}))
+            out.append((f"s{setup}B_c{c}_default", f"paper_setup{setup}_B", dict(default, **{"Initial Cohesion": c})))
         for scen in ("A", "C"):
             for tag in ("paper", "bui"):
                 a, b = av[tag]
                 out.append((f"s{setup}{scen}_av{tag}", f"paper_setup{setup}_{scen}",
                             {"Artificial Viscosity Alpha": a, "Artificial Viscosity Beta": b}))
+            out.append((f"s{setup}{scen}_default", f"paper_setup{setup}_{scen}", dict(default)))
     for c in ("75", "90"):
         for tag in ("paper", "bui"):
             a, b = av[tag]
