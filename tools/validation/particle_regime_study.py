@@ -15,7 +15,7 @@ numerical choice at a time, never the material:
   - particles per cell (4, the scenes' value; 9) and the smoothing length (h = 1 and 1.5 cells).
 The particle layers are read with sqlite3; with GDAL's Python bindings (osgeo) the deposit's extent
 is given from the DEM's west edge (the scenes' x), else in world coordinates. Results go to
-WORK_DIR/regime_study.csv and a Markdown table on standard output. Each run takes 20-120 s on two
+WORK_DIR/regime_study.csv (the runs of this invocation) and a Markdown table on standard output. Each run takes 9-120 s on two
 PoCL cores.
 """
 import argparse
