@@ -14,8 +14,8 @@
 #include <vector>
 
 #include "core/Constants.hpp"
-#include "particles/ParticleSeeding.hpp"
 #include "particles/ParticleSolver.hpp"
+#include "support/FlatParticleBlock.hpp"
 #include "support/TestDevice.hpp"
 
 using namespace talus;
@@ -23,51 +23,9 @@ using namespace talus::particles;
 
 namespace {
 
-constexpr double kDeg = 3.14159265358979323846 / 180.0;
-
 double kineticEnergy(const ParticleState& s) {
   double e = 0;
   for (std::size_t q = 0; q < s.size(); ++q) e += 0.5 * s.mass[q] * (s.vx[q] * s.vx[q] + s.vy[q] * s.vy[q]);
-  return e;
-}
-
-/// A square elastic block, 1 m thick, over cells [lo, hi)^2 of an n x n flat, frictionless bed.
-struct FlatSquare {
-  Grid grid;
-  ParticleTerrain terrain;
-  SeededParticles seeded;
-  ParticleMaterial material;
-};
-
-FlatSquare flatSquare(int n, double dx, int lo, int hi, double rho, double particlesPerCell) {
-  FlatSquare s;
-  s.grid = Grid::make(n, n, dx);
-  s.terrain.mask.assign(s.grid.cells(), 1);
-  s.terrain.bed.assign(s.grid.cells(), 0.0);
-  SeedInput in;
-  in.mask = s.terrain.mask;
-  in.bed = s.terrain.bed;
-  in.thickness.assign(s.grid.cells(), 0.0);
-  in.density.assign(s.grid.cells(), rho);
-  for (int j = lo; j < hi; ++j)
-    for (int i = lo; i < hi; ++i) in.thickness[s.grid.index(i, j)] = 1.0;
-  s.seeded = seedParticles(s.grid, in, SeedSpacing{0, particlesPerCell});
-  s.material.density = {rho};
-  s.material.phi = {30 * kDeg};
-  s.material.delta = {0.0};     // frictionless
-  s.material.cohesion = {1e9};  // elastic throughout
-  return s;
-}
-
-/// The uniform radial velocity v = rate (x - x_c) about (x_c, x_c); returns its kinetic energy.
-double setRadialVelocity(ParticleSolver& solver, const SeededParticles& seeded, double rate, double xc) {
-  std::vector<double> vx(seeded.size()), vy(seeded.size());
-  double e = 0;
-  for (std::size_t q = 0; q < seeded.size(); ++q) {
-    vx[q] = rate * (seeded.x[q] - xc), vy[q] = rate * (seeded.y[q] - xc);
-    e += 0.5 * seeded.mass[q] * (vx[q] * vx[q] + vy[q] * vy[q]);
-  }
-  solver.setVelocities(vx, vy);
   return e;
 }
 
@@ -87,7 +45,7 @@ double setRadialVelocity(ParticleSolver& solver, const SeededParticles& seeded, 
 // energy, so that a tally that lost its terms would fail.
 TEST(ParticleEnergy, ArtificialViscosityDissipatesWhatTheKineticEnergyLoses) {
   const double rho = 2000.0, U = 1.0, xc = 15.0;
-  const FlatSquare s = flatSquare(30, 1.0, 10, 20, rho, 9);
+  const test::FlatParticleBlock s = test::flatParticleBlock(30, 1.0, 10, 20, rho, 9);
   ParticleSettings ps;
   ps.youngModulus = 1.0;
   ps.soundSpeed = 20.0;
@@ -97,7 +55,7 @@ TEST(ParticleEnergy, ArtificialViscosityDissipatesWhatTheKineticEnergyLoses) {
   ps.kConst = 0.0;
   ParticleSolver solver(test::testContext(compute::Precision::Double), s.grid, s.terrain, ps);
   solver.setParticles(s.seeded, s.material);
-  setRadialVelocity(solver, s.seeded, -U / 5.0, xc);
+  test::setRadialVelocity(solver, s.seeded, -U / 5.0, xc);
   const double ke0 = kineticEnergy(solver.state());
   double dissipated = 0;
   for (int k = 0; k < 10; ++k) {
@@ -127,7 +85,7 @@ struct BreathingRun {
 /// The breathing block with artificial stress epsilon `eps`, no artificial viscosity.
 BreathingRun breathingBlock(double eps) {
   const double rho = 2000.0, rate = 0.014;  // edge speed 0.056 m/s: strain ~1e-3 in tension
-  const FlatSquare s = flatSquare(40, 0.5, 12, 28, rho, 4);
+  const test::FlatParticleBlock s = test::flatParticleBlock(40, 0.5, 12, 28, rho, 4);
   ParticleSettings ps;
   ps.youngModulus = 1e7;
   ps.poisson = 0.3;
@@ -137,7 +95,7 @@ BreathingRun breathingBlock(double eps) {
   ParticleSolver solver(test::testContext(compute::Precision::Double), s.grid, s.terrain, ps);
   solver.setParticles(s.seeded, s.material);
   BreathingRun r;
-  r.initialKinetic = setRadialVelocity(solver, s.seeded, rate, 10.0);
+  r.initialKinetic = test::setRadialVelocity(solver, s.seeded, rate, 10.0);
   for (int k = 0; k < 200; ++k) {
     solver.step(0.05);
     r.maxKinetic = std::max(r.maxKinetic, solver.diagnostics().kinetic);
