@@ -32,7 +32,10 @@
 // continuous and a DEM step, a flume wall or an obstacle is a jump at a face. A jump up that rises
 // above the particle's own column (its thickness V/A) is a vertical face to it: a particle about to
 // cross it keeps its position along that axis and loses its velocity into it (an inelastic,
-// unilateral contact; the grid's columns meet the same walls). A lower jump, and any ramp however
+// unilateral contact; the grid's columns meet the same walls), and the wall's Coulomb friction
+// (wall_friction: the bed's friction angle delta, with the wall's impulse as the normal force) takes
+// velocity along it. (Until 2026-12-07 the walls were frictionless: in the paper's flume the block
+// then slid sideways along the obstacle's face, docs/scenes.md.) A lower jump, and any ramp however
 // steep, is climbed on the bed-slope force, which pays the potential energy. So whether a step is a
 // wall depends on its height against the material, not on the cell size (the former rule, a rise
 // steeper than 60 degrees over one cell, made a 1.7 m step a wall at 1 m cells and a 17 m cliff a ramp
@@ -54,6 +57,16 @@ INLINE real face_rise(__constant const ParticleParams* p, __global const uchar* 
   const real hw = (real)0.5 * p->dx * (real)d;
   const real own = bed[here] + hw * lslope[axis * n + here], other = bed[nb] - hw * lslope[axis * n + nb];
   return other - own;
+}
+
+/// The velocity along a wall after a contact that stopped the velocity `into` it: Coulomb friction
+/// with the impulse the wall gave, |dv_along| <= mu |into|, mu the bed's friction tan(delta) (reduced
+/// by buoyancy as the bed's), never reversing the motion along the wall. A particle pressed against a
+/// wall by a force m a meets it every sub-step with |into| = dt |a|, so this is the Coulomb force
+/// mu m |a| along the wall, the basal friction's law turned onto the wall.
+INLINE real wall_friction(real along, real into, real mu) {
+  const real slip = fabs(along), cut = mu * fabs(into);
+  return slip > cut ? along * ((real)1 - cut / slip) : (real)0;
 }
 
 /// Kinetic energy of a particle of mass m moving with horizontal velocity (u, v) on a bed of gradient
@@ -186,9 +199,11 @@ __kernel void particle_integrate(__constant const ParticleParams* p, __global co
     if (here >= 0) {
       const int ci = here % p->nx, cj = here / p->nx;
       const real column = V[i] / A[i];
+      const real mu = tan(delta[i]) * fmax((real)0, (real)1 - p->pore_b * gamma);  // as the bed's
       const int ni = (int)floor(xn / p->dx), nj = (int)floor(yn / p->dx);
       if (ni != ci && face_rise(p, mask, bed, lslope, here, ni, cj, 0, ni > ci ? 1 : -1) > column) {
         xn = xi;
+        uy = wall_friction(uy, ux, mu);
         ux = 0;
       }
       const int ai = (int)floor(xn / p->dx);
@@ -196,6 +211,7 @@ __kernel void particle_integrate(__constant const ParticleParams* p, __global co
       if (nj != cj && (face_rise(p, mask, bed, lslope, here, ci, nj, 1, nj > cj ? 1 : -1) > column ||
                        (moved && face_rise(p, mask, bed, lslope, cj * p->nx + ai, ai, nj, 1, nj > cj ? 1 : -1) > column))) {
         yn = yi;
+        ux = wall_friction(ux, uy, mu);
         uy = 0;
       }
     }
