@@ -39,16 +39,35 @@
 // steep, is climbed on the bed-slope force, which pays the potential energy. So whether a step is a
 // wall depends on its height against the material, not on the cell size (the former rule, a rise
 // steeper than 60 degrees over one cell, made a 1.7 m step a wall at 1 m cells and a 17 m cliff a ramp
-// at 10 m cells). The bed the particle moves on is the same one: a wall's top is no part of it
-// (particle_walls.cl, walled_bed_gradient: in front of a wall the ground continues to the wall
-// instead of ramping up it), so a particle at rest against a wall feels no force and one pressed into
-// it does not ride up and down a ramp the DEM does not have. The thickness a step is measured
-// against is the particle's wall column (below), which also decides that bed.
+// at 10 m cells).
 #include "particles/particle_common.cl"
-#include "particles/particle_walls.cl"
 #ifndef PARTICLE_CURVATURE
 #define PARTICLE_CURVATURE 0
 #endif
+
+/// Rise of the reconstructed bed at the face from cell `here` to its neighbour (a, b) along one axis
+/// (d = +1 or -1): the neighbour's face value minus ours. Where the neighbour is not a domain cell
+/// of the raster, infinite if that boundary is a wall (`Boundary Type`, `Nodata Boundary Type`:
+/// nothing crosses it), else 0 (the particle crosses and leaves as outflow).
+INLINE real face_rise(__constant const ParticleParams* p, __global const uchar* mask, __global const real* bed,
+                      __global const real* lslope, int here, int a, int b, int axis, int d) {
+  if (a < 0 || b < 0 || a >= p->nx || b >= p->ny) return p->edge_wall ? (real)INFINITY : (real)0;
+  if (!mask[b * p->nx + a]) return p->nodata_wall ? (real)INFINITY : (real)0;
+  const int n = p->nx * p->ny, nb = b * p->nx + a;
+  const real hw = (real)0.5 * p->dx * (real)d;
+  const real own = bed[here] + hw * lslope[axis * n + here], other = bed[nb] - hw * lslope[axis * n + nb];
+  return other - own;
+}
+
+/// The velocity along a wall after a contact that stopped the velocity `into` it: Coulomb friction
+/// with the impulse the wall gave, |dv_along| <= mu |into|, mu the bed's friction tan(delta) (reduced
+/// by buoyancy as the bed's), never reversing the motion along the wall. A particle pressed against a
+/// wall by a force m a meets it every sub-step with |into| = dt |a|, so this is the Coulomb force
+/// mu m |a| along the wall, the basal friction's law turned onto the wall.
+INLINE real wall_friction(real along, real into, real mu) {
+  const real slip = fabs(along), cut = mu * fabs(into);
+  return slip > cut ? along * ((real)1 - cut / slip) : (real)0;
+}
 
 /// Kinetic energy of a particle of mass m moving with horizontal velocity (u, v) on a bed of gradient
 /// (bx, by): m (|v|^2 + (v . grad b)^2) / 2 (the metric G of the internal forces, below; with
@@ -71,8 +90,7 @@ __kernel void particle_integrate(__constant const ParticleParams* p, __global co
                                  __global real* V, __global real* rho, __global real* Vf,
                                  __global const real* Vf0, __global const real* coh, __global const real* coh0,
                                  __global real* released, __global const real* fluid_depth,
-                                 __global real* lift_off, __global real* wall_column, __global real* tally,
-                                 const real dt) {
+                                 __global real* lift_off, __global real* tally, const real dt) {
   const int i = get_global_id(0);
   if (i >= p->count) return;
   const int cap = p->count;
@@ -94,48 +112,9 @@ __kernel void particle_integrate(__constant const ParticleParams* p, __global co
     }
   }
   const real xi = x[i], yi = y[i];
-  // The wall column: the thickness against which a step is a wall to this particle, both for its
-  // contacts (below) and for the bed it moves on (particle_walls.cl: the corners behind a wall are
-  // replaced by its own cell's ghost elevation). It follows the particle's own column V / A, but that
-  // changes the bed under a particle standing in front of a step whose height the column crosses:
-  // the ramp up the step comes back (a thickening column) or goes (a thinning one). A bed that drops
-  // under the particle releases m g |lift|, lost as in a landing (tallied as released and
-  // dissipated); a bed that rises lifts it, and the lift is paid from its kinetic energy on the bed.
-  // A particle that cannot pay keeps its former wall column, and with it the wall, until it can or
-  // until it leaves the wall's patch. So the bed does no work it was not paid for, and no energy is
-  // made by a column that swells and shrinks in front of a step (test ParticleRealTerrain.*).
-  real vxi = vx[i], vyi = vy[i], column = wall_column[i], liftReleased = 0, liftLost = 0;
-  WalledPatch start;  // the bed under the particle at the start, for its wall column
-  {
-    const real2 plain = bed_gradient(p, patch, xi, yi);
-    const real own = V[i] / A[i];
-    const WalledPatch was = walled_patch(p, patch, mask, bed, lslope, xi, yi, column);
-    const WalledPatch now = walled_patch(p, patch, mask, bed, lslope, xi, yi, own);
-    start = was;
-    if (!was.walls && !now.walls) {
-      column = own;
-      start = now;
-    } else {
-      const real lift = walled_offset_of(now) - walled_offset_of(was);
-      const real2 s0 = walled_gradient_of(p, plain, was), s1 = walled_gradient_of(p, plain, now);
-      const real k0 = kinetic_on_bed(m[i], vxi, vyi, s0.x, s0.y), k1 = kinetic_on_bed(m[i], vxi, vyi, s1.x, s1.y);
-      const real target = k0 - m[i] * (real)GRAVITY * fmax(lift, (real)0);
-      if (target >= (real)0) {
-        const real scale = k1 > (real)0 ? sqrt(target / k1) : (real)0;
-        vxi *= scale;
-        vyi *= scale;
-        column = own;
-        start = now;
-        liftReleased = -m[i] * (real)GRAVITY * lift;
-        liftLost = fmax(liftReleased, (real)0);
-      }
-    }
-    wall_column[i] = column;
-  }
-  // The bed is the surface z = b(x, y) of particle_walls.cl: the bilinear interpolant of the
-  // cell-centre elevations (particle_common.cl, bed_gradient), with the walls (for the wall column)
-  // taken out of it, and gravity, the metric below and the turn all take its exact gradient at the
-  // particle, with g_n = g / (1 + |grad b|^2) of that gradient
+  // The bed is one continuous surface z = b(x, y), the bilinear interpolant of the cell-centre
+  // elevations (particle_common.cl, bed_gradient), and gravity, the metric below and the turn
+  // all take its exact gradient at the particle, with g_n = g / (1 + |grad b|^2) of that gradient
   // (cos^2 of its slope). The force -g_n grad b is then the Lagrangian one of a particle held on that
   // surface, and its work along any path is the drop of g b: a block sliding over a noisy DEM gains
   // no energy. (Until 2026-12-05 the force sampled a bilinear blend of the cells' centred differences
@@ -150,14 +129,14 @@ __kernel void particle_integrate(__constant const ParticleParams* p, __global co
   // turn's normal force, v . (grad b(x) - grad b(x - dt v)) / dt, adds to the weight in the basal
   // friction (centripetal normal stress at concave bends); where it would pull, the particle lifts
   // off and lands later (its lift-off speed carried in lift_off, as the grid's solids carry theirs).
-  const real2 slope = walled_bed_gradient(p, patch, mask, bed, lslope, xi, yi, column);
+  const real2 slope = bed_gradient(p, patch, xi, yi);
   const real bx = slope.x, by = slope.y, g = bed_normal_gravity(slope);
 #if PARTICLE_CURVATURE
-  real u0 = vxi, v0 = vyi;
+  real u0 = vx[i], v0 = vy[i];
   real gload = g;
   {
     const real xb = xi - dt * u0, yb = yi - dt * v0;
-    const real2 back = walled_bed_gradient(p, patch, mask, bed, lslope, xb, yb, column);
+    const real2 back = bed_gradient(p, patch, xb, yb);
     const real bxb = back.x, byb = back.y;
     const real d = u0 * (bx - bxb) + v0 * (by - byb);
     const real c2 = g / (real)GRAVITY;
@@ -176,7 +155,7 @@ __kernel void particle_integrate(__constant const ParticleParams* p, __global co
     }
   }
 #else
-  const real u0 = vxi, v0 = vyi, gload = g;  // (Curvature Acceleration off: compiled out)
+  const real u0 = vx[i], v0 = vy[i], gload = g;  // (Curvature Acceleration off: compiled out)
 #endif
   // The internal forces (stress, artificial terms of particle_forces) are horizontal; on the bed a
   // particle's inertia is its 3-D kinetic energy m (|v|^2 + (v . grad b)^2) / 2, whose metric is
@@ -219,6 +198,7 @@ __kernel void particle_integrate(__constant const ParticleParams* p, __global co
     const int here = terrain_cell(p, xi, yi);
     if (here >= 0) {
       const int ci = here % p->nx, cj = here / p->nx;
+      const real column = V[i] / A[i];
       const real mu = tan(delta[i]) * fmax((real)0, (real)1 - p->pore_b * gamma);  // as the bed's
       const int ni = (int)floor(xn / p->dx), nj = (int)floor(yn / p->dx);
       if (ni != ci && face_rise(p, mask, bed, lslope, here, ni, cj, 0, ni > ci ? 1 : -1) > column) {
@@ -236,58 +216,16 @@ __kernel void particle_integrate(__constant const ParticleParams* p, __global co
       }
     }
   }
-  // The bed a particle moves on is continuous inside the part of a patch seen from one cell, but the
-  // corners behind a wall are seen from the cell the particle stands in (particle_walls.cl): where it
-  // crosses into another cell the two views can differ. Across a face that is a wall from the lower
-  // side, seen from the upper side, the particle falls by the step (it lands: the fall is released
-  // and lost, as a landing's vertical speed); elsewhere the views differ by the terrain's curvature
-  // over a cell and may lift it a little, which it pays from its kinetic energy (or, unable to, stays
-  // where it was, as at a wall). `rise` is the change of the bed's elevation over the sub-step that
-  // the force, the gradient at the midpoint, did not see: exact zero (to round-off) inside one view.
-  const int cell = terrain_cell(p, xn, yn);
-  const int stays = cell >= 0 && mask[cell];
-  real potential = 0, landing = 0, paid = 0;
-  if (stays) {
-    const real mx = (real)0.5 * (xi + xn), my = (real)0.5 * (yi + yn);
-    const real2 midPlain = bed_gradient(p, patch, mx, my);
-    const real2 mid = walled_gradient_of(p, midPlain, walled_patch(p, patch, mask, bed, lslope, mx, my, column));
-    const real offStart = walled_offset_of(start);
-    const real offEnd = walled_bed_offset(p, patch, mask, bed, lslope, xn, yn, column);
-    const real dX = xn - xi, dY = yn - yi;
-    const real rise = (offEnd - offStart) - ((mid.x - midPlain.x) * dX + (mid.y - midPlain.y) * dY);
-    const real weight = m[i] * (real)GRAVITY;
-    if (rise > (real)0) {
-      const real k = kinetic_on_bed(m[i], ux, uy, bx, by);
-      if (k >= weight * rise) {
-        const real f = sqrt((k - weight * rise) / k);
-        ux *= f;
-        uy *= f;
-        paid = weight * rise;
-        potential = -weight * (midPlain.x * dX + midPlain.y * dY + offEnd - offStart);
-      } else {
-        xn = xi;  // (its kinetic energy goes to the contact tally below)
-        yn = yi;
-        ux = uy = 0;
-      }
-    } else {
-      landing = -weight * rise;
-      // The potential released, m g (b(x) - b(x_new)): the bilinear part as the gradient at the
-      // midpoint times the step (exact inside a bilinear patch: b is quadratic along a straight path
-      // in it; no difference of two elevations of a thousand metres in float), the walls' part as the
-      // difference of the offsets.
-      potential = -weight * (midPlain.x * dX + midPlain.y * dY + offEnd - offStart);
-    }
-  }
   {
     const real wx = (real)0.5 * dt * m[i] * (u0 + ux), wy = (real)0.5 * dt * m[i] * (v0 + uy);
     tally[cap + i] = avx * wx + avy * wy;
     tally[2 * cap + i] = asx * wx + asy * wy;
-    // What the basal friction, the wall contacts and the landings took: the kinetic energy on the bed
-    // (the same metric) before them less after them (all scale or cut the velocity, so this is >= 0),
-    // less what was paid for a lift (it went into potential energy), plus the falls.
-    tally[3 * cap + i] = kinetic - kinetic_on_bed(m[i], ux, uy, bx, by) - paid + liftLost + landing;
+    // What the basal friction and the wall contacts took: the kinetic energy on the bed (the same
+    // metric) before them less after them (both scale or cut the velocity, so this is >= 0).
+    tally[3 * cap + i] = kinetic - kinetic_on_bed(m[i], ux, uy, bx, by);
   }
-  if (!stays) {
+  const int cell = terrain_cell(p, xn, yn);
+  if (cell < 0 || !mask[cell]) {
     tally[i] = m[i] + p->rho_f * released[i];
     released[i] = 0;
     m[i] = 0;
@@ -295,7 +233,13 @@ __kernel void particle_integrate(__constant const ParticleParams* p, __global co
     vx[i] = vy[i] = 0;
     return;
   }
-  tally[4 * cap + i] = potential + liftReleased;
+  {
+    // The potential released, m g (b(x) - b(x_new)), as the gradient at the midpoint times the step:
+    // exact for the bilinear patch (b is quadratic along a straight path in it), and no difference
+    // of two elevations of a thousand metres in float.
+    const real2 mid = bed_gradient(p, patch, (real)0.5 * (xi + xn), (real)0.5 * (yi + yn));
+    tally[4 * cap + i] = -m[i] * (real)GRAVITY * (mid.x * (xn - xi) + mid.y * (yn - yi));
+  }
   A[i] = share[i] / numberDensity[i];  // the area anchored to the positions (particle_density.cl)
   vx[i] = ux;
   vy[i] = uy;
@@ -305,9 +249,7 @@ __kernel void particle_integrate(__constant const ParticleParams* p, __global co
 
 /// Per-particle rows for the diagnostics (rows of `stride` entries): |v|, the kinetic energy on the bed
 /// (kinetic_on_bed), m, V_f, released.
-__kernel void particle_totals(__constant const ParticleParams* p, __global const uchar* mask,
-                              __global const real* bed, __global const real* patch, __global const real* lslope,
-                              __global const real* wall_column, __global const real* x,
+__kernel void particle_totals(__constant const ParticleParams* p, __global const real* patch, __global const real* x,
                               __global const real* y, __global const real* vx, __global const real* vy,
                               __global const real* m, __global const real* Vf, __global const real* released,
                               __global real* rows, const int stride) {
@@ -318,8 +260,7 @@ __kernel void particle_totals(__constant const ParticleParams* p, __global const
   // drops it) has no bed slope: 0 x the slope at a NaN position made the kinetic energy NaN, and the
   // run stopped as "unstable" whenever a particle left in a step's last sub-step (setup 1 B of the
   // regime study at h = 1.5 dx, 37 s). A live particle with a non-finite velocity still gives NaN.
-  const real2 slope =
-      m[i] > (real)0 ? walled_bed_gradient(p, patch, mask, bed, lslope, x[i], y[i], wall_column[i]) : (real2)(0, 0);
+  const real2 slope = m[i] > (real)0 ? bed_gradient(p, patch, x[i], y[i]) : (real2)(0, 0);
   rows[i] = sqrt(v2);
   rows[stride + i] = kinetic_on_bed(m[i], vx[i], vy[i], slope.x, slope.y);
   rows[2 * stride + i] = m[i];

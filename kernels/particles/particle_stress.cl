@@ -29,7 +29,6 @@
 #include "particles/artificial_stress.cl"
 #include "particles/particle_density.cl"
 #include "particles/particle_material.cl"
-#include "particles/particle_walls.cl"
 
 /// K of a particle whose velocity field has the divergence tr L: constant, or Savage-Hutter with the
 /// grid's ramp from active to passive over the contraction rate -tr L (common/earth_pressure.cl; it
@@ -45,8 +44,6 @@ __kernel void particle_stress(__constant const ParticleParams* p, __constant con
                               __global const real* x, __global const real* y, __global const real* vx,
                               __global const real* vy, __global const real* V, __global const real* A,
                               __global real* H, __global const real* rho, __global const real* patch,
-                              __global const uchar* mask, __global const real* bed, __global const real* lslope,
-                              __global const real* wall_column,
                               __global const real* phi, __global const real* delta, __global real* sxx,
                               __global real* syy, __global real* sxy, __global real* coh,
                               __global const real* coh0, __global real* plastic, __global real* Nxx,
@@ -113,8 +110,7 @@ __kernel void particle_stress(__constant const ParticleParams* p, __constant con
   const real rhoAi = rhoi * Hi;
   H[i] = Hi;
   rhoA[i] = rhoAi;
-  const real gni =  // as particle_integrate's gravity, on the bed the particle can reach (particle_walls.cl)
-      bed_normal_gravity(walled_bed_gradient(p, patch, mask, bed, lslope, xi, yi, wall_column[i]));
+  const real gni = bed_normal_gravity(bed_gradient(p, patch, xi, yi));  // as particle_integrate's gravity
   const real pzz = (real)0.5 * rhoi * gni * Hi;
   const real K = particle_earth_pressure(p, phi[i], delta[i], L00 + L11, gni, Hi);
   MaterialState s = {sxx[i], syy[i], sxy[i], coh[i], plastic[i]};

@@ -1,7 +1,6 @@
 #include "particles/ParticleSolver.hpp"
 
 #include <algorithm>
-#include <array>
 #include <cstring>
 #include <cmath>
 #include <limits>
@@ -13,11 +12,49 @@
 #include "flow/DebrisParams.hpp"
 #include "flow/SlopeGravity.hpp"
 #include "particles/LaunchSize.hpp"
-#include "particles/ParticleBedSurface.hpp"
 #include "particles/ParticleParams.hpp"
 
 namespace talus::particles {
 namespace {
+
+/// The cell-centre elevations of the particles' bed surface (particle_common.cl, bed_gradient):
+/// the DEM's, and in each nodata cell the mean of its nearest domain cells (rings of 4-neighbours, filled
+/// outwards), so the surface near a nodata hole or edge continues flat instead of falling to a placeholder.
+std::vector<double> surfaceElevations(const Grid& g, const std::vector<double>& bed, const std::vector<uint8_t>& mask) {
+  std::vector<double> z(g.cells(), 0.0);
+  std::vector<uint8_t> known(g.cells(), 0);
+  std::vector<std::size_t> front;
+  for (std::size_t k = 0; k < g.cells(); ++k)
+    if (mask[k]) z[k] = bed[k], known[k] = 1, front.push_back(k);
+  const int di[4] = {1, -1, 0, 0}, dj[4] = {0, 0, 1, -1};
+  while (!front.empty()) {
+    std::vector<std::size_t> next;
+    for (std::size_t k : front) {
+      const int i = static_cast<int>(k % g.nx), j = static_cast<int>(k / g.nx);
+      for (int d = 0; d < 4; ++d) {
+        const int a = i + di[d], b = j + dj[d];
+        if (a < 0 || b < 0 || a >= g.nx || b >= g.ny || known[g.index(a, b)]) continue;
+        known[g.index(a, b)] = 2;  // in this ring: its value is the mean of its known neighbours
+        next.push_back(g.index(a, b));
+      }
+    }
+    std::sort(next.begin(), next.end());
+    next.erase(std::unique(next.begin(), next.end()), next.end());
+    for (std::size_t k : next) {
+      const int i = static_cast<int>(k % g.nx), j = static_cast<int>(k / g.nx);
+      double sum = 0;
+      int count = 0;
+      for (int d = 0; d < 4; ++d) {
+        const int a = i + di[d], b = j + dj[d];
+        if (a >= 0 && b >= 0 && a < g.nx && b < g.ny && known[g.index(a, b)] == 1) sum += z[g.index(a, b)], ++count;
+      }
+      z[k] = sum / count;
+    }
+    for (std::size_t k : next) known[k] = 1;
+    front.swap(next);
+  }
+  return z;
+}
 
 template <class Real>
 void fillParams(compute::RawBuffer& buf, const Grid& g, const ParticleSettings& s, double h, std::size_t count,
@@ -79,15 +116,37 @@ ParticleSolver::ParticleSolver(compute::Context& ctx, const Grid& grid, const Pa
   const flow::SlopeGravity sg = flow::computeSlopeGravity(grid, terrain.bed, terrain.mask, fs);
   mask_ = compute::Buffer<uint8_t>(ctx, n, "particle terrain mask");
   mask_.write(terrain.mask);
-  surface_ = std::make_unique<ParticleBedSurface>(grid, terrain.bed, terrain.mask, sg.slopeX, sg.slopeY,
-                                                  settings.edgeWalls, settings.nodataWalls);
   bed_ = compute::RealBuffer(ctx, n, "particle bed elevation");
-  bed_.upload(surface_->cellBed());
-  bedPatch_ = compute::RealBuffer(ctx, 3 * n, "particle bed surface patches");
-  bedPatch_.upload(surface_->patches());
+  std::vector<double> bed = terrain.bed;
+  for (std::size_t k = 0; k < n; ++k)
+    if (!terrain.mask[k]) bed[k] = 0.0;  // never read: a nodata face is a wall or an outlet (particle_integrate.cl)
+  bed_.upload(bed);
+  {
+    // The bed surface's bilinear patches (particle_common.cl, bed_gradient), in double: the slopes
+    // of each patch's edges from its lower-left cell centre and its twist, rows of n.
+    const std::vector<double> z = surfaceElevations(grid, terrain.bed, terrain.mask);
+    std::vector<double> patch(3 * n, 0.0);
+    for (int j = 0; j < grid.ny; ++j)
+      for (int i = 0; i < grid.nx; ++i) {
+        const std::size_t k = grid.index(i, j);
+        const bool east = i + 1 < grid.nx, north = j + 1 < grid.ny;
+        const double b00 = z[k], b10 = east ? z[grid.index(i + 1, j)] : b00, b01 = north ? z[grid.index(i, j + 1)] : b00;
+        const double b11 = east && north ? z[grid.index(i + 1, j + 1)] : east ? b10 : b01;
+        patch[k] = (b10 - b00) / grid.dx;
+        patch[n + k] = (b01 - b00) / grid.dx;
+        patch[2 * n + k] = (b11 - b10 - b01 + b00) / grid.dx;
+      }
+    bedPatch_ = compute::RealBuffer(ctx, 3 * n, "particle bed surface patches");
+    bedPatch_.upload(patch);
+    patchHost_ = std::move(patch);
+  }
   slopeCorrection_ = terrain.slopeCorrection;
   limitedSlope_ = compute::RealBuffer(ctx, 2 * n, "particle limited bed slope");
-  limitedSlope_.upload(surface_->limitedSlopes());
+  {
+    std::vector<double> ls = sg.slopeX;
+    ls.insert(ls.end(), sg.slopeY.begin(), sg.slopeY.end());
+    limitedSlope_.upload(ls);
+  }
   params_ = compute::RawBuffer(ctx, sizeof(ParticleParamsT<double>), "particle parameters");
   const bool curved = terrain.slopeCorrection && terrain.curvature;
   const std::string metric = std::string("-DPARTICLE_METRIC=") + (terrain.slopeCorrection ? "1" : "0");
@@ -116,10 +175,15 @@ ParticleSolver::ParticleSolver(compute::Context& ctx, const Grid& grid, const Pa
   maxima_ = compute::Kernel(ctx.program("particles/particle_maxima.cl"), "particle_track_maxima");
 }
 
-double ParticleSolver::normalGravityAt(double x, double y, double column) const {
+double ParticleSolver::normalGravityAt(double x, double y) const {
   if (!slopeCorrection_ || !(std::isfinite(x) && std::isfinite(y))) return kGravity;
-  const std::array<double, 2> g = surface_->walledGradient(x, y, column);
-  return kGravity / (1 + g[0] * g[0] + g[1] * g[1]);
+  const std::size_t n = grid_.cells();
+  const double fx = x / grid_.dx - 0.5, fy = y / grid_.dx - 0.5;
+  const int i0 = std::clamp(static_cast<int>(std::floor(fx)), 0, std::max(grid_.nx - 2, 0));
+  const int j0 = std::clamp(static_cast<int>(std::floor(fy)), 0, std::max(grid_.ny - 2, 0));
+  const std::size_t k = grid_.index(i0, j0);
+  const double t = patchHost_[2 * n + k], bx = patchHost_[k] + t * (fy - j0), by = patchHost_[n + k] + t * (fx - i0);
+  return kGravity / (1 + bx * bx + by * by);
 }
 
 void ParticleSolver::trackMaxima() {
@@ -255,7 +319,6 @@ void ParticleSolver::setParticles(const SeededParticles& seeded, const ParticleM
   make(Vf_, "particle confined fluid"), make(Vf0_, "particle initial confined fluid"), make(released_, "particle released fluid");
   make(fluidDepth_, "fluid depth at the particles");
   make(liftOff_, "particle lift-off speed");
-  make(wallColumn_, "particle wall column");
   make(x_, "particle x"), make(y_, "particle y"), make(vx_, "particle vx"), make(vy_, "particle vy");
   make(m_, "particle mass"), make(rho_, "particle density"), make(phi_, "particle phi"), make(delta_, "particle delta");
   make(coh_, "particle cohesion"), make(coh0_, "particle initial cohesion"), make(sxx_, "particle sxx");
@@ -283,11 +346,6 @@ void ParticleSolver::setParticles(const SeededParticles& seeded, const ParticleM
                        " m^3 outside [0, the particle's volume " + std::to_string(seeded.volume[q]) + "]");
   Vf_.upload(vf), Vf0_.upload(vf), released_.upload(zero), fluidDepth_.upload(zero);
   liftOff_.upload(zero);
-  {
-    std::vector<double> column(n);  // the seeded column V / A (particle_integrate.cl, the wall column)
-    for (std::size_t q = 0; q < n; ++q) column[q] = seeded.volume[q] / seeded.area[q];
-    wallColumn_.upload(column);
-  }
   x_.upload(seeded.x), y_.upload(seeded.y), vx_.upload(zero), vy_.upload(zero), m_.upload(seeded.mass);
   rho_.upload(rho), phi_.upload(phi), delta_.upload(delta), coh_.upload(coh), coh0_.upload(coh);
   sxx_.upload(zero), syy_.upload(zero), sxy_.upload(zero), plastic_.upload(zero);
@@ -367,7 +425,7 @@ const std::vector<compute::RealBuffer ParticleSolver::*>& ParticleSolver::stateF
       &S::x_,   &S::y_,   &S::vx_,  &S::vy_,     &S::m_,       &S::rho_,  &S::phi_,     &S::delta_,
       &S::coh_, &S::coh0_, &S::sxx_, &S::syy_,   &S::sxy_,     &S::plastic_, &S::A_,    &S::V_,
       &S::fsc0_, &S::ffc0_, &S::Vf_, &S::Vf0_,   &S::released_, &S::fluidDepth_,
-      &S::liftOff_, &S::areaShare_, &S::wallColumn_};
+      &S::liftOff_, &S::areaShare_};
   return fields;
 }
 
@@ -406,19 +464,16 @@ void ParticleSolver::restoreState(const std::vector<char>& bytes) {
   const auto& fields = stateFields();
   const std::size_t unit = compute::realSize(ctx_.precision());
   if (bytes.size() >= sizeof count + sizeof time_) std::memcpy(&count, bytes.data(), sizeof count);
-  // Four layouts restore, newest first: four energies, every field and the peak maps; before
-  // 2026-12-07 the same without the last field (the wall column, then set from the restored V / A);
-  // before 2026-12-05 two energies (no friction work, no potential), every field but the last two
-  // (the area share and the wall column) and no peak maps; before the energies were tallied,
-  // neither. Missing energies start from zero; a missing area share is set again from the restored
-  // areas at the first stress pass; missing peak maps restart from zero (the run warns:
-  // maxMapsRestored).
+  // Three layouts restore, newest first: four energies, every field and the peak maps; before
+  // 2026-12-05 two energies (no friction work, no potential), every field but the last (the area
+  // share) and no peak maps; before the energies were tallied, neither. Missing energies start from
+  // zero; a missing area share is set again from the restored areas at the first stress pass; missing
+  // peak maps restart from zero (the run warns: maxMapsRestored).
   struct Layout {
     std::size_t energies, fields, maps;
   };
   const std::size_t head = sizeof count + sizeof time_, mapBytes = hMax_.raw().bytes();
-  const Layout layouts[4] = {
-      {4, fields.size(), 2}, {4, fields.size() - 1, 2}, {2, fields.size() - 2, 0}, {0, fields.size() - 2, 0}};
+  const Layout layouts[3] = {{4, fields.size(), 2}, {2, fields.size() - 1, 0}, {0, fields.size() - 1, 0}};
   const Layout* found = nullptr;
   for (const Layout& l : layouts)
     if (bytes.size() == head + l.energies * sizeof(double) + l.fields * count * unit + l.maps * mapBytes) {
@@ -446,13 +501,6 @@ void ParticleSolver::restoreState(const std::vector<char>& bytes) {
     if (count) f.raw().writeBytes(bytes.data() + at, count * unit);
     at += count * unit;
   }
-  if (found->fields < fields.size() && count) {
-    // A checkpoint from before the wall column (2026-12-07): the particles' own columns V / A.
-    const std::vector<double> V = V_.download(), A = A_.download();
-    std::vector<double> column(capacity_, 0.0);
-    for (std::size_t q = 0; q < count; ++q) column[q] = A[q] > 0 ? V[q] / A[q] : 0.0;
-    wallColumn_.upload(column);
-  }
   maxMapsRestored_ = found->maps == 2;
   for (compute::RealBuffer* map : {&hMax_, &vMax_}) {
     if (!maxMapsRestored_) {
@@ -477,8 +525,7 @@ bool ParticleSolver::sortAndEvaluateStress(double ds) {
   }
   if (count_ == 0) return false;
   const compute::Range global{count_};
-  stress_.bind(params_, ng.params(), ng.cellStart(), ng.cellEnd(), x_, y_, vx_, vy_, V_, A_, H_, rho_, bedPatch_, mask_, bed_,
-               limitedSlope_, wallColumn_, phi_, delta_, sxx_,
+  stress_.bind(params_, ng.params(), ng.cellStart(), ng.cellEnd(), x_, y_, vx_, vy_, V_, A_, H_, rho_, bedPatch_, phi_, delta_, sxx_,
                syy_, sxy_, coh_, coh0_, plastic_, Nxx_, Nyy_, Nxy_, gradCorrection_, areaShare_, numberDensity_, rhoA_,
                artStress_, nbList_, nbGrad_, nbCount_, nbCap_, compute::RealArg{ds});
   stress_.launch(global, kParticleGroup, "particle_stress");
@@ -494,7 +541,7 @@ void ParticleSolver::subStep(double ds) {
                Nxx_, Nyy_, Nxy_, gradCorrection_, artStress_, ax_, ay_, tally_);
   forces_.launch(global, kParticleGroup, "particle_forces");
   integrate_.bind(params_, mask_, bed_, bedPatch_, limitedSlope_, x_, y_, vx_, vy_, m_, delta_, ax_, ay_, A_, areaShare_, numberDensity_, V_, rho_, Vf_,
-                  Vf0_, coh_, coh0_, released_, fluidDepth_, liftOff_, wallColumn_, tally_, compute::RealArg{ds});
+                  Vf0_, coh_, coh0_, released_, fluidDepth_, liftOff_, tally_, compute::RealArg{ds});
   integrate_.launch(global, kParticleGroup, "particle_integrate");
   // Rows of count_ entries (particle_integrate): the outflow mass, the work of the artificial
   // viscosity and of the artificial stress over the sub-step (with the midpoint velocity), and the
@@ -522,7 +569,7 @@ void ParticleSolver::updateDiagnostics() {
     diag_.mass = diag_.kinetic = diag_.maxSpeed = diag_.confinedFluid = diag_.pendingRelease = 0;
     return;
   }
-  speedKernel_.bind(params_, mask_, bed_, bedPatch_, limitedSlope_, wallColumn_, x_, y_, vx_, vy_, m_, Vf_, released_, speed_, static_cast<int>(capacity_));
+  speedKernel_.bind(params_, bedPatch_, x_, y_, vx_, vy_, m_, Vf_, released_, speed_, static_cast<int>(capacity_));
   speedKernel_.launch(compute::Range{count_}, kParticleGroup, "particle_totals");
   using compute::ReduceOp;
   const std::vector<double> r = reducer_.reduceRows(
@@ -546,7 +593,6 @@ ParticleState ParticleSolver::state() const {
   s.sxx = get(sxx_), s.syy = get(syy_), s.sxy = get(sxy_), s.cohesion = get(coh_), s.cohesion0 = get(coh0_);
   s.plastic = get(plastic_), s.H = get(H_), s.density = get(rho_);
   s.Nxx = get(Nxx_), s.Nyy = get(Nyy_), s.Nxy = get(Nxy_), s.structured0 = get(fsc0_), s.confined0 = get(ffc0_);
-  s.wallColumn = get(wallColumn_);
   return s;
 }
 

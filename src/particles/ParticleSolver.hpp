@@ -17,7 +17,6 @@
 #include "core/Grid.hpp"
 #include "flow/FlowSettings.hpp"
 #include "particles/NeighbourGrid.hpp"
-#include "particles/ParticleBedSurface.hpp"
 #include "particles/ParticleGridTransfer.hpp"
 #include "particles/ParticleSeeding.hpp"
 #include "particles/ParticleSettings.hpp"
@@ -49,7 +48,6 @@ struct ParticleState {
   std::vector<double> density;          ///< rho_c [kg/m^3]
   std::vector<double> Nxx, Nyy, Nxy;    ///< depth-integrated total in-plane stress of the last sub-step [Pa m]
   std::vector<double> structured0, confined0;  ///< initial f_sc, f_fc
-  std::vector<double> wallColumn;  ///< the column against which steps are walls [m] (particle_integrate.cl)
   std::size_t size() const { return x.size(); }
 };
 
@@ -143,9 +141,9 @@ class ParticleSolver {
   /// Recomputes that P2G from the current positions (after restoreState(), for a bitwise resume).
   void refreshGridTransfer();
   std::size_t count() const { return count_; }
-  /// g_n [m/s^2] at (x, y) on the bed surface a particle with column `column` [m] moves on, as the
-  /// kernels take it (particle_common.cl, bed_normal_gravity; particle_walls.cl, walled_bed_gradient).
-  double normalGravityAt(double x, double y, double column) const;
+  /// g_n [m/s^2] at (x, y) on the particles' bed surface, as the kernels take it
+  /// (particle_common.cl, bed_normal_gravity of bed_gradient).
+  double normalGravityAt(double x, double y) const;
   double smoothingLength() const { return h_; }
   /// Mean particle spacing of the seeding [m].
   double meanSpacing() const { return spacing_; }
@@ -177,13 +175,12 @@ class ParticleSolver {
   compute::Buffer<uint8_t> mask_;
   compute::RealBuffer bed_, limitedSlope_;
   compute::RealBuffer bedPatch_;  ///< the bed surface's bilinear patches (particle_common.cl, bed_gradient)
-  std::unique_ptr<ParticleBedSurface> surface_;  ///< the same surface on the host (normalGravityAt)
+  std::vector<double> patchHost_;  ///< the same on the host (normalGravityAt)
   bool slopeCorrection_ = true;
   // Particle fields (reordered together at every neighbour build).
   compute::RealBuffer x_, y_, vx_, vy_, m_, rho_, phi_, delta_, coh_, coh0_, sxx_, syy_, sxy_, plastic_, A_, V_, fsc0_, ffc0_;
   compute::RealBuffer Vf_, Vf0_, released_, fluidDepth_;
   compute::RealBuffer liftOff_;  ///< speed at which a particle moves away from the bed [m/s] (curvature term)
-  compute::RealBuffer wallColumn_;  ///< the column against which steps are walls [m] (particle_integrate.cl)
   /// a_i = A_i S_i, the particle's share of its neighbours' number density (particle_density.cl); 0 until the
   /// first stress pass sets it from the seeded area
   compute::RealBuffer areaShare_;

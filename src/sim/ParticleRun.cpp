@@ -159,7 +159,7 @@ void ParticleRun::writeLayer(const std::string& path) const {
     // Total stress: the depth-integrated in-plane stress over H, and the overburden (P.41).
     const double H = s.H[q];
     const double xx = H > 0 ? s.Nxx[q] / H : 0, yy = H > 0 ? s.Nyy[q] / H : 0, xy = H > 0 ? s.Nxy[q] / H : 0;
-    const double zz = -0.5 * s.density[q] * solver_->normalGravityAt(s.x[q], s.y[q], H) * H;
+    const double zz = -0.5 * s.density[q] * solver_->normalGravityAt(s.x[q], s.y[q]) * H;
     const double p2 = 0.5 * (xx + yy), d = 0.5 * (xx - yy);
     I1[q] = xx + yy + zz;
     sqrtJ2[q] = std::sqrt(d * d + xy * xy + (p2 - zz) * (p2 - zz) / 3);

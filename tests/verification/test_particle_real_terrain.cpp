@@ -29,7 +29,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -38,9 +37,6 @@
 
 #include "core/Constants.hpp"
 #include "io/RasterIO.hpp"
-#include "flow/FlowSettings.hpp"
-#include "flow/SlopeGravity.hpp"
-#include "particles/ParticleBedSurface.hpp"
 #include "particles/ParticleSeeding.hpp"
 #include "particles/ParticleSolver.hpp"
 #include "support/TestDevice.hpp"
@@ -52,17 +48,19 @@ namespace {
 
 constexpr double kDeg = 3.14159265358979323846 / 180.0;
 
-/// The bed a particle moves on (src/particles/ParticleBedSurface, the host mirror of the kernels'
-/// surface, tested against them in tests/kernels/test_particle_bed_surface.cpp): the bilinear
-/// interpolant of the cell centres, with the corners behind a wall for the particle's wall column
-/// replaced by its own cell's ghost. Returns (b, db/dx, db/dy).
+/// The particles' bed surface on the host: bilinear between cell centres, edge patches continued
+/// (particle_common.cl, bed_gradient). Returns (b, db/dx, db/dy).
 struct BedSurface {
-  const ParticleBedSurface& surface;
-  void at(double x, double y, double column, double* b, double* bx, double* by) const {
-    *b = surface.elevation(x, y) + surface.walledOffset(x, y, column);
-    const std::array<double, 2> g = surface.walledGradient(x, y, column);
-    *bx = g[0];
-    *by = g[1];
+  const Grid& g;
+  const std::vector<double>& z;
+  void at(double x, double y, double* b, double* bx, double* by) const {
+    const double fx = x / g.dx - 0.5, fy = y / g.dx - 0.5;
+    const int i0 = std::clamp(static_cast<int>(std::floor(fx)), 0, g.nx - 2), j0 = std::clamp(static_cast<int>(std::floor(fy)), 0, g.ny - 2);
+    const double tx = fx - i0, ty = fy - j0;
+    const double b00 = z[g.index(i0, j0)], b10 = z[g.index(i0 + 1, j0)], b01 = z[g.index(i0, j0 + 1)], b11 = z[g.index(i0 + 1, j0 + 1)];
+    *b = (1 - ty) * ((1 - tx) * b00 + tx * b10) + ty * ((1 - tx) * b01 + tx * b11);
+    *bx = ((1 - ty) * (b10 - b00) + ty * (b11 - b01)) / g.dx;
+    *by = ((1 - tx) * (b01 - b00) + tx * (b11 - b10)) / g.dx;
   }
 };
 
@@ -100,14 +98,12 @@ TEST(ParticleRealTerrain, AGranularReleaseOnTheKotSlopeKeepsItsEnergyBudgetAndCo
   ParticleSolver solver(test::testContext(compute::Precision::Double), g, terrain, ps);
   solver.setParticles(seeded, mat);
   // (The surface's nodata cells hold their nearest data, ParticleSolver; the flow stays far from them.)
-  const flow::SlopeGravity sg = flow::computeSlopeGravity(g, terrain.bed, terrain.mask, flow::FlowSettings{});
-  const ParticleBedSurface bedSurface(g, terrain.bed, terrain.mask, sg.slopeX, sg.slopeY, ps.edgeWalls, ps.nodataWalls);
-  const BedSurface surface{bedSurface};
+  const BedSurface surface{g, dem.values};
   const ParticleState s0 = solver.state();
   double bed0 = 0;  // sum m g b at the start (the particles' order changes at each sort: sums only)
   for (std::size_t q = 0; q < s0.size(); ++q) {
     double b = 0, bx = 0, by = 0;
-    surface.at(s0.x[q], s0.y[q], s0.wallColumn[q], &b, &bx, &by);
+    surface.at(s0.x[q], s0.y[q], &b, &bx, &by);
     bed0 += s0.mass[q] * kGravity * b;
   }
   solver.trackMaxima();  // as ParticleRun does: the release, then after every step
@@ -123,7 +119,7 @@ TEST(ParticleRealTerrain, AGranularReleaseOnTheKotSlopeKeepsItsEnergyBudgetAndCo
     for (std::size_t q = 0; q < s.size(); ++q) {
       ASSERT_TRUE(std::isfinite(s.vx[q]) && std::isfinite(s.vy[q])) << "particle " << q << " at t = " << step << " s";
       double b = 0, bx = 0, by = 0;
-      surface.at(s.x[q], s.y[q], s.wallColumn[q], &b, &bx, &by);
+      surface.at(s.x[q], s.y[q], &b, &bx, &by);
       const double w = bx * s.vx[q] + by * s.vy[q], v2 = s.vx[q] * s.vx[q] + s.vy[q] * s.vy[q] + w * w;
       kinetic += 0.5 * s.mass[q] * v2;
       bedNow += s.mass[q] * kGravity * b;
