@@ -175,7 +175,9 @@ __kernel void particle_integrate(__constant const ParticleParams* p, __global co
   const real speed = sqrt(ux * ux + uy * uy);
   const real kinetic = kinetic_on_bed(m[i], ux, uy, bx, by);  // before friction and walls
   const real gamma = fluid_depth[i] > (real)1e-6 ? p->rho_f / rho[i] : (real)0;
-  const real stop = dt * tan(delta[i]) * gload * fmax((real)0, (real)1 - p->pore_b * gamma);
+  // The bed's Coulomb coefficient tan(delta) (1 - B gamma), which the walls take as well (below).
+  const real mu = tan(delta[i]) * fmax((real)0, (real)1 - p->pore_b * gamma);
+  const real stop = dt * mu * gload;
   if (speed <= stop) {
     ux = uy = 0;
   } else {
@@ -199,7 +201,6 @@ __kernel void particle_integrate(__constant const ParticleParams* p, __global co
     if (here >= 0) {
       const int ci = here % p->nx, cj = here / p->nx;
       const real column = V[i] / A[i];
-      const real mu = tan(delta[i]) * fmax((real)0, (real)1 - p->pore_b * gamma);  // as the bed's
       const int ni = (int)floor(xn / p->dx), nj = (int)floor(yn / p->dx);
       if (ni != ci && face_rise(p, mask, bed, lslope, here, ni, cj, 0, ni > ci ? 1 : -1) > column) {
         xn = xi;
