@@ -35,11 +35,11 @@
 // unilateral contact; the grid's columns meet the same walls), and the wall's Coulomb friction
 // (wall_friction: the bed's friction angle delta, with the wall's impulse as the normal force) takes
 // velocity along it. (Until 2026-12-07 the walls were frictionless: in the paper's flume struck
-// faster than the paper's 1.3 m/s the block slid sideways off the obstacle, docs/scenes.md.) A lower jump, and any ramp however
-// steep, is climbed on the bed-slope force, which pays the potential energy. So whether a step is a
-// wall depends on its height against the material, not on the cell size (the former rule, a rise
-// steeper than 60 degrees over one cell, made a 1.7 m step a wall at 1 m cells and a 17 m cliff a ramp
-// at 10 m cells).
+// faster than the paper's 1.3 m/s the block slid sideways off the obstacle, docs/scenes.md.) A lower
+// jump, and any ramp however steep, is climbed on the bed-slope force, which pays the potential
+// energy. So whether a step is a wall depends on its height against the material, not on the cell
+// size (the former rule, a rise steeper than 60 degrees over one cell, made a 1.7 m step a wall at
+// 1 m cells and a 17 m cliff a ramp at 10 m cells).
 #include "particles/particle_common.cl"
 #ifndef PARTICLE_CURVATURE
 #define PARTICLE_CURVATURE 0
