@@ -1,6 +1,9 @@
 // Explicit neighbour lists from the neighbour grid: the loop of kernels/particles/neighbours.cl
-// written out once. Used to check the grid against a brute-force search and to measure neighbour
-// counts; SPH kernels run the same loop themselves instead of storing lists.
+// written out once, over the cells neighbour_cells_within() gives for the radius (the 3 x 3 block or
+// less up to the grid's search radius, farther for a larger one, as the thickness sums of an expanded
+// particle search: particle_density.cl). Used to check the grid and that cell range against a
+// brute-force search and to measure neighbour counts; SPH kernels run the same loops themselves
+// instead of storing lists.
 #include "particles/neighbours.cl"
 
 /// For each particle i < n (arrays already in the grid's sorted order): count[i] = the number of
@@ -13,18 +16,13 @@ __kernel void particles_neighbour_lists(__constant const NeighbourGridParams* gr
   const uint i = get_global_id(0);
   if (i >= n) return;
   const real xi = x[i], yi = y[i], r2 = radius * radius;
-  const NeighbourCellRange cells = neighbour_cells_around(grid, xi, yi);
   uint found = 0u;
-  for (int cy = cells.y0; cy <= cells.y1; ++cy)
-    for (int cx = cells.x0; cx <= cells.x1; ++cx) {
-      const uint c = neighbour_cell_key(grid, cx, cy);
-      for (uint j = cell_start[c]; j < cell_end[c]; ++j) {
-        if (j == i) continue;
-        const real dx = x[j] - xi, dy = y[j] - yi;
-        if (dx * dx + dy * dy > r2) continue;
-        if (found < capacity) list[(size_t)i * capacity + found] = j;
-        ++found;
-      }
-    }
+  FOR_EACH_PARTICLE_WITHIN(grid, cell_start, cell_end, xi, yi, radius, j) {
+    if (j == i) continue;
+    const real dx = x[j] - xi, dy = y[j] - yi;
+    if (dx * dx + dy * dy > r2) continue;
+    if (found < capacity) list[(size_t)i * capacity + found] = j;
+    ++found;
+  }
   count[i] = found;
 }

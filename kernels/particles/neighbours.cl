@@ -85,11 +85,46 @@ INLINE NeighbourCellRange neighbour_cells_around(__constant const NeighbourGridP
   return r;
 }
 
+/// The cells that can hold a particle within `radius` of (x, y), clipped to the grid: those the
+/// interval [x - radius, x + radius] (and its y counterpart) touches, widened on each side by
+/// 1e-3 of a cell plus 16 REAL_EPS times the grid's cells per row, more than the rounding of the
+/// quotients (a few units in the last place of a quotient of up to that many cells), so no cell
+/// holding a particle whose computed distance is within the radius is dropped; and never more
+/// than ceil(radius / cell_size) cells from the particle's own (for radius <= cell_size: within the
+/// 3 x 3 block of neighbour_cells_around). Empty for a particle outside the grid.
+INLINE NeighbourCellRange neighbour_cells_within(__constant const NeighbourGridParams* g, real x, real y, real radius) {
+  const int2 c = neighbour_cell_of(g, x, y);
+  NeighbourCellRange r;
+  if (c.x < 0) {
+    r.x0 = 0, r.x1 = -1, r.y0 = 0, r.y1 = -1;
+    return r;
+  }
+  const real q = radius / g->cell_size;
+  const real margin = (real)1e-3 + (real)16 * REAL_EPS * (real)max(g->cells_x, g->cells_y);
+  const int k = (int)ceil(q);
+  const real fx = (x - g->x_min) / g->cell_size, fy = (y - g->y_min) / g->cell_size;
+  r.x0 = max(max((int)floor(fx - q - margin), c.x - k), 0);
+  r.x1 = min(min((int)floor(fx + q + margin), c.x + k), g->cells_x - 1);
+  r.y0 = max(max((int)floor(fy - q - margin), c.y - k), 0);
+  r.y1 = min(min((int)floor(fy + q + margin), c.y + k), g->cells_y - 1);
+  return r;
+}
+
 /// The loop of the header as one statement: visits every particle j (a uint, sorted index) of the
 /// 3 x 3 cells around (px, py), the particle itself included; `continue` skips to the next j.
 ///   FOR_EACH_NEARBY_PARTICLE(ng, cell_start, cell_end, x[i], y[i], j) { ... }
 #define FOR_EACH_NEARBY_PARTICLE(ng, start, end, px, py, j)                                      \
   for (NeighbourCellRange nb_r = neighbour_cells_around(ng, px, py), *nb_once = &nb_r; nb_once;   \
+       nb_once = 0)                                                                              \
+    for (int nb_cy = nb_r.y0; nb_cy <= nb_r.y1; ++nb_cy)                                          \
+      for (int nb_cx = nb_r.x0; nb_cx <= nb_r.x1; ++nb_cx)                                        \
+        for (uint j = start[neighbour_cell_key(ng, nb_cx, nb_cy)], nb_end = end[neighbour_cell_key(ng, nb_cx, nb_cy)]; \
+             j < nb_end; ++j)
+
+/// The same loop over the cells of neighbour_cells_within(ng, px, py, radius): every particle j whose
+/// cell can hold a particle within `radius` (the caller still tests the distance).
+#define FOR_EACH_PARTICLE_WITHIN(ng, start, end, px, py, radius, j)                              \
+  for (NeighbourCellRange nb_r = neighbour_cells_within(ng, px, py, radius), *nb_once = &nb_r; nb_once; \
        nb_once = 0)                                                                              \
     for (int nb_cy = nb_r.y0; nb_cy <= nb_r.y1; ++nb_cy)                                          \
       for (int nb_cx = nb_r.x0; nb_cx <= nb_r.x1; ++nb_cx)                                        \

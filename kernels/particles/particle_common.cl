@@ -30,6 +30,8 @@ typedef struct {
   real k_const;           // constant earth-pressure coefficient
   real pore_b;            // basal pore-pressure factor B (P.39)
   real rho_f;             // density of the fluid released from broken bonds [kg/m^3]
+  real seed_area;         // A_0, the mean seeded area per particle [m^2] (particle_density.cl)
+  real h_max;             // the largest smoothing length of the thickness sums [m] (particle_density.cl)
   real pad1;
 } ParticleParams;
 

@@ -22,6 +22,24 @@
 // at 5 m, docs/terrain_comparison.md) areas of 8e4 m^2 stood beside 0.014 m^2 (columns of 1 mm beside
 // 1 km) after 30 s, speeds reached 175 m/s and the run stopped with NaN. The summation form cannot
 // do that: a lone particle's area is at most a_i / W(0).
+//
+// The smoothing length of these sums follows the spacing (issue 18, item 2). With a fixed h a
+// particle alone in its support has S_i = W(0, h), so A_i can never exceed a_i / W(0, h) and H_i never
+// falls below V_i W(0, h) / a_i: about 11 % of the seeded thickness at 4 particles per cell, whatever
+// the distance to the neighbours (a thin front carried its particles 1.6-3.8 times as thick as the
+// volume-exact grid did). The sums of particle i are therefore taken with
+//   h_i = h sqrt(A_i / A_0), clamped to [h, h_max],
+// A_i its area (the last sub-step's), A_0 the mean seeded area: the ratio h_i / sqrt(A_i) stays the
+// seeding's h / dp, the classical adaptive smoothing length of SPH (h proportional to the particle
+// spacing; Monaghan 2005, Rep. Prog. Phys. 68, section 2.5; with A_i from the last sub-step the
+// sequence A = a_i / S_i(h_i(A)) converges to the fixed point h_i^2 S_i(h_i) = (h / dp)^2 a_i of
+// Springel & Hernquist 2002, MNRAS 333, eq. 6, in 2D: the kernel holds a fixed weight of
+// neighbours). A layer that keeps its seeded spacing or is compressed keeps h_i = h (the forces
+// and the strain rate always use h: the smoothing length only sets how far the thickness looks);
+// h_max bounds the search (src/particles/ParticleSolver.cpp says how far) and sets the floor of
+// a particle left alone, W(0, h_max) = (h / h_max)^2 W(0, h). The first sub-step takes h_i from the
+// seeded area, so the anchor a_i is the seeded area times S_i(h_i) and a layer at rest keeps its
+// areas exactly.
 // particle_stress.cl accumulates these sums in its own neighbour loop (one pass over the neighbours
 // for the thickness, the number density and the strain rate; a separate pass for the thickness alone
 // cost a fifth of the particle step), in the loop's fixed visiting order; particle_integrate sets the
@@ -42,5 +60,12 @@ INLINE void thickness_add(ThicknessSums* t, real Vj, real Aj, real w) {
 
 /// H_i = sum V_j W_ij / sum A_j W_ij.
 INLINE real thickness_of(ThicknessSums t) { return t.vol / t.area; }
+
+/// The smoothing length h_i of the thickness sums of a particle of area A_i (header): h sqrt(A_i / A_0)
+/// clamped to [h, h_max]; exactly h for A_i <= A_0.
+INLINE real thickness_smoothing_length(real h, real h_max, real A0, real Ai) {
+  const real ratio = Ai / A0;
+  return ratio > (real)1 ? min(h * sqrt(ratio), h_max) : h;
+}
 
 #endif

@@ -62,14 +62,16 @@ __kernel void particle_stress(__constant const ParticleParams* p, __constant con
   uint found = 0;  // neighbours j != i within the support, listed for particle_forces
   __global uint* list = nb_list + (size_t)i * nb_cap;
   __global real* grad = nb_grad + (size_t)i * nb_cap;
-  FOR_EACH_NEARBY_PARTICLE(ng, cell_start, cell_end, xi, yi, j) {
+  // The thickness sums look as far as 2 h_i (particle_density.cl), the rest as far as 2 h <= 2 h_i.
+  const real hi = thickness_smoothing_length(h, p->h_max, p->seed_area, A[i]), r2wide = (real)4 * hi * hi;
+  FOR_EACH_PARTICLE_WITHIN(ng, cell_start, cell_end, xi, yi, (real)2 * hi, j) {
     const real dx = xi - x[j], dy = yi - y[j], r2 = dx * dx + dy * dy;
-    if (r2 >= r2max) continue;
+    if (r2 >= r2wide) continue;
     const real r = sqrt(r2);
-    const real w = sph_w(r, h);
+    const real w = sph_w(r, hi);
     S += w;
     thickness_add(&th, V[j], A[j], w);
-    if (j == (uint)i) continue;
+    if (r2 >= r2max || j == (uint)i) continue;
     const real fw = sph_grad_factor_at(r, h);
     const real2 gw = (real2)(fw * dx, fw * dy);  // grad_i W_ij
     const real aj = A[j];  // the area the neighbour stands for

@@ -162,7 +162,8 @@ void NeighbourGrid::reorder(compute::RealBuffer& field) {
 void NeighbourGrid::listNeighbours(const compute::RealBuffer& xSorted, const compute::RealBuffer& ySorted,
                                    double radius, std::size_t capacity, compute::Buffer<cl_uint>& count,
                                    compute::Buffer<cl_uint>& list) {
-  if (!(radius <= radius_)) throw InputError("neighbour grid: list radius exceeds the grid's search radius");
+  if (!(radius > 0) || !std::isfinite(radius))
+    throw InputError("neighbour grid: list radius " + std::to_string(radius) + " m is not a positive number");
   if (xSorted.size() < count_ || ySorted.size() < count_ || count.size() < count_ || list.size() < count_ * capacity)
     throw ComputeError("neighbour grid: neighbour-list buffers are too small for " + std::to_string(count_) +
                        " particles");

@@ -60,8 +60,8 @@ class NeighbourGrid {
   /// Explicit neighbour lists (kernels/particles/neighbour_lists.cl) for checks and statistics:
   /// for each sorted particle i, count[i] = the number of j != i with |p_j - p_i| <= radius
   /// (computed as dx^2 + dy^2 <= radius^2 in the kernels' precision), list[i * capacity + m] the
-  /// first `capacity` of them. xSorted, ySorted: positions reordered by gather(). radius must not
-  /// exceed radius() (the grid would miss pairs).
+  /// first `capacity` of them. xSorted, ySorted: positions reordered by gather(). radius > 0 and
+  /// finite; beyond radius() the search visits as many cells as the radius reaches.
   void listNeighbours(const compute::RealBuffer& xSorted, const compute::RealBuffer& ySorted, double radius,
                       std::size_t capacity, compute::Buffer<cl_uint>& count, compute::Buffer<cl_uint>& list);
 

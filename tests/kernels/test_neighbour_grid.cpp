@@ -248,6 +248,43 @@ TEST_P(NeighbourGridTest, PairsAtTheRadiusAcrossALargeDomain) {
   expectNeighboursMatchBruteForce(grid, c, radius);
 }
 
+// The thickness sums of an expanded particle look as far as 2 h_i <= 6 h = 3 times the grid's radius
+// (kernels/particles/particle_density.cl), over the cells neighbour_cells_within() gives: the same
+// pairs as brute force at radii from just below the grid's to three times it, on a uniform cloud and
+// for pairs placed at the radius next to cell lines of a large domain (float rounding of the cell
+// coordinate, as in PairsAtTheRadiusAcrossALargeDomain).
+TEST_P(NeighbourGridTest, WiderRadiiFindThePairsOfABruteForceSearch) {
+  const DomainBox box{-5.0, -3.0, 25.0, 17.0};
+  const double radius = 0.8;
+  NeighbourGrid grid(ctx(), box, radius);
+  const Cloud c = uniformCloud(box, 3000, 0.05, 41);
+  for (double f : {0.999, 1.0, 1.5, 2.0, 2.7, 3.0}) {
+    SCOPED_TRACE("radius " + std::to_string(f) + " times the grid's");
+    expectNeighboursMatchBruteForce(grid, c, f * radius);
+  }
+  const DomainBox large{-123.4, 56.7, -123.4 + 2000.0, 56.7 + 1000.0};
+  NeighbourGrid wide(ctx(), large, 0.7);
+  std::mt19937_64 rng(29);
+  std::uniform_int_distribution<int> lineX(4, wide.cellsX() - 5), jitter(-3, 3);
+  std::uniform_real_distribution<double> uy(large.yMin + 4.0, large.yMax - 4.0);
+  auto real = [&](double v) { return test::toDeviceReal(v, isDouble()); };
+  for (double f : {2.0, 3.0}) {
+    SCOPED_TRACE("large domain, radius " + std::to_string(f) + " times the grid's");
+    const double r = f * 0.7;
+    Cloud p;
+    for (int k = 0; k < 2000; ++k) {
+      double ax = real(large.xMin + lineX(rng) * wide.cellSize());
+      for (int u = jitter(rng); u != 0; u += (u > 0 ? -1 : 1))
+        ax = isDouble() ? std::nextafter(ax, u > 0 ? 1e300 : -1e300)
+                        : double(std::nextafter(float(ax), u > 0 ? 1e30f : -1e30f));
+      const double ay = real(uy(rng));
+      p.add(ax, ay);
+      p.add(real(k % 2 ? ax + r : ax - r), ay);
+    }
+    expectNeighboursMatchBruteForce(wide, p, r);
+  }
+}
+
 TEST_P(NeighbourGridTest, RebuildsAfterMovingRemovingAndAddingParticles) {
   const DomainBox box{0.0, 0.0, 4.0, 4.0};
   NeighbourGrid grid(ctx(), box, 0.2, 100);
@@ -350,7 +387,8 @@ TEST_P(NeighbourGridTest, RejectsInvalidArguments) {
   EXPECT_THROW(grid.build(x, y, 11), ComputeError);
   grid.build(x, y, 10);
   Buffer<cl_uint> count(ctx(), 10), list(ctx(), 100);
-  EXPECT_THROW(grid.listNeighbours(x, y, 0.2, 10, count, list), InputError);
+  EXPECT_THROW(grid.listNeighbours(x, y, 0.0, 10, count, list), InputError);
+  EXPECT_THROW(grid.listNeighbours(x, y, std::nan(""), 10, count, list), InputError);
   EXPECT_THROW(grid.gather(x, x), ComputeError);
   compute::RealBuffer small(ctx(), 5);
   EXPECT_THROW(grid.gather(x, small), ComputeError);
