@@ -1,6 +1,6 @@
 // The neighbour grid as particle kernels see it: the parameter block (mirrored by
-// src/particles/NeighbourGridParams.hpp), the cell of a position, and the 3 x 3 block of cells to
-// visit for the neighbours of a particle.
+// src/particles/NeighbourGridParams.hpp), the cell of a position, and the block of cells to visit
+// for the neighbours of a particle within a radius (3 x 3 or fewer up to the grid's search radius).
 //
 // The grid covers the domain box [x_min, x_max] x [y_min, y_max] with cells_x * cells_y square
 // cells of edge cell_size, numbered row-major from the lower-left corner: key = cy * cells_x + cx.
@@ -13,7 +13,7 @@
 // particles of cell c are the array entries cell_start[c] <= j < cell_end[c] (empty cells have
 // cell_start = cell_end = 0). A neighbour loop reads:
 //
-//   const NeighbourCellRange cells = neighbour_cells_around(grid, x[i], y[i]);
+//   const NeighbourCellRange cells = neighbour_cells_within(grid, x[i], y[i], radius);
 //   for (int cy = cells.y0; cy <= cells.y1; ++cy)
 //     for (int cx = cells.x0; cx <= cells.x1; ++cx) {
 //       const uint c = neighbour_cell_key(grid, cx, cy);
@@ -70,28 +70,13 @@ INLINE uint neighbour_key_of(__constant const NeighbourGridParams* g, real x, re
   return c.x < 0 ? CELL_KEY_OUTSIDE : neighbour_cell_key(g, c.x, c.y);
 }
 
-/// The cells to visit for the neighbours of a particle at (x, y) (see the loop in the header).
-INLINE NeighbourCellRange neighbour_cells_around(__constant const NeighbourGridParams* g, real x, real y) {
-  const int2 c = neighbour_cell_of(g, x, y);
-  NeighbourCellRange r;
-  if (c.x < 0) {
-    r.x0 = 0, r.x1 = -1, r.y0 = 0, r.y1 = -1;
-    return r;
-  }
-  r.x0 = max(c.x - 1, 0);
-  r.x1 = min(c.x + 1, g->cells_x - 1);
-  r.y0 = max(c.y - 1, 0);
-  r.y1 = min(c.y + 1, g->cells_y - 1);
-  return r;
-}
-
 /// The cells that can hold a particle within `radius` of (x, y), clipped to the grid: those the
 /// interval [x - radius, x + radius] (and its y counterpart) touches, widened on each side by
 /// 1e-3 of a cell plus 16 REAL_EPS times the grid's cells per row, more than the rounding of the
 /// quotients (a few units in the last place of a quotient of up to that many cells), so no cell
 /// holding a particle whose computed distance is within the radius is dropped; and never more
 /// than ceil(radius / cell_size) cells from the particle's own (for radius <= cell_size: within the
-/// 3 x 3 block of neighbour_cells_around). Empty for a particle outside the grid.
+/// 3 x 3 block around it). Empty for a particle outside the grid.
 INLINE NeighbourCellRange neighbour_cells_within(__constant const NeighbourGridParams* g, real x, real y, real radius) {
   const int2 c = neighbour_cell_of(g, x, y);
   NeighbourCellRange r;
@@ -110,19 +95,11 @@ INLINE NeighbourCellRange neighbour_cells_within(__constant const NeighbourGridP
   return r;
 }
 
-/// The loop of the header as one statement: visits every particle j (a uint, sorted index) of the
-/// 3 x 3 cells around (px, py), the particle itself included; `continue` skips to the next j.
-///   FOR_EACH_NEARBY_PARTICLE(ng, cell_start, cell_end, x[i], y[i], j) { ... }
-#define FOR_EACH_NEARBY_PARTICLE(ng, start, end, px, py, j)                                      \
-  for (NeighbourCellRange nb_r = neighbour_cells_around(ng, px, py), *nb_once = &nb_r; nb_once;   \
-       nb_once = 0)                                                                              \
-    for (int nb_cy = nb_r.y0; nb_cy <= nb_r.y1; ++nb_cy)                                          \
-      for (int nb_cx = nb_r.x0; nb_cx <= nb_r.x1; ++nb_cx)                                        \
-        for (uint j = start[neighbour_cell_key(ng, nb_cx, nb_cy)], nb_end = end[neighbour_cell_key(ng, nb_cx, nb_cy)]; \
-             j < nb_end; ++j)
-
-/// The same loop over the cells of neighbour_cells_within(ng, px, py, radius): every particle j whose
-/// cell can hold a particle within `radius` (the caller still tests the distance).
+/// The loop of the header as one statement: visits every particle j (a uint, sorted index, the
+/// particle itself included) of the cells of neighbour_cells_within(ng, px, py, radius), whose cell
+/// can hold a particle within `radius` (the caller still tests the distance); `continue` skips to
+/// the next j.
+///   FOR_EACH_PARTICLE_WITHIN(ng, cell_start, cell_end, x[i], y[i], radius, j) { ... }
 #define FOR_EACH_PARTICLE_WITHIN(ng, start, end, px, py, radius, j)                              \
   for (NeighbourCellRange nb_r = neighbour_cells_within(ng, px, py, radius), *nb_once = &nb_r; nb_once; \
        nb_once = 0)                                                                              \

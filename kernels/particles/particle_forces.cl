@@ -124,7 +124,7 @@ __kernel void particle_forces(__constant const ParticleParams* p, __constant con
       add_pair(p, &acc, i, j, dx, dy, r2, grad[q], vxi, vyi, own, ri_on, vx, vy, m, A, rhoA, Nxx, Nyy, Nxy, corr, Rart);
     }
   } else {
-    FOR_EACH_NEARBY_PARTICLE(ng, cell_start, cell_end, xi, yi, j) {
+    FOR_EACH_PARTICLE_WITHIN(ng, cell_start, cell_end, xi, yi, (real)2 * h, j) {
       if (j == (uint)i) continue;
       const real dx = xi - x[j], dy = yi - y[j], r2 = dx * dx + dy * dy;
       if (r2 >= r2max) continue;

@@ -134,6 +134,13 @@ class NeighbourGridTest : public ::testing::TestWithParam<Precision> {
   }
 };
 
+/// v moved by `ulps` units in the last place of the device's real (float or double).
+double stepUlps(double v, int ulps, bool isDouble) {
+  for (; ulps > 0; --ulps) v = isDouble ? std::nextafter(v, 1e300) : double(std::nextafter(float(v), 1e30f));
+  for (; ulps < 0; ++ulps) v = isDouble ? std::nextafter(v, -1e300) : double(std::nextafter(float(v), -1e30f));
+  return v;
+}
+
 Cloud uniformCloud(const DomainBox& b, std::size_t n, double outsideShare, unsigned seed) {
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> ux(b.xMin, b.xMax), uy(b.yMin, b.yMax), u01(0.0, 1.0);
@@ -226,16 +233,11 @@ TEST_P(NeighbourGridTest, PairsAtTheRadiusAcrossALargeDomain) {
   std::uniform_int_distribution<int> lineX(1, grid.cellsX() - 3), jitter(-3, 3);
   std::uniform_real_distribution<double> uy(box.yMin + 1.0, box.yMax - 1.0), angle(-0.3, 0.3);
   auto real = [&](double v) { return test::toDeviceReal(v, isDouble()); };
-  auto step = [&](double v, int ulps) {
-    for (; ulps > 0; --ulps) v = isDouble() ? std::nextafter(v, 1e300) : double(std::nextafter(float(v), 1e30f));
-    for (; ulps < 0; ++ulps) v = isDouble() ? std::nextafter(v, -1e300) : double(std::nextafter(float(v), -1e30f));
-    return v;
-  };
   Cloud c;
   for (int k = 0; k < 4000; ++k) {
     // Anchor on or a few ulps next to a cell line, partner one radius away (to the right, or at a
     // small angle), both as the device holds them.
-    const double ax = step(real(box.xMin + lineX(rng) * grid.cellSize()), jitter(rng));
+    const double ax = stepUlps(real(box.xMin + lineX(rng) * grid.cellSize()), jitter(rng), isDouble());
     const double ay = real(uy(rng));
     c.add(ax, ay);
     if (k % 2) {
@@ -273,10 +275,7 @@ TEST_P(NeighbourGridTest, WiderRadiiFindThePairsOfABruteForceSearch) {
     const double r = f * 0.7;
     Cloud p;
     for (int k = 0; k < 2000; ++k) {
-      double ax = real(large.xMin + lineX(rng) * wide.cellSize());
-      for (int u = jitter(rng); u != 0; u += (u > 0 ? -1 : 1))
-        ax = isDouble() ? std::nextafter(ax, u > 0 ? 1e300 : -1e300)
-                        : double(std::nextafter(float(ax), u > 0 ? 1e30f : -1e30f));
+      const double ax = stepUlps(real(large.xMin + lineX(rng) * wide.cellSize()), jitter(rng), isDouble());
       const double ay = real(uy(rng));
       p.add(ax, ay);
       p.add(real(k % 2 ? ax + r : ax - r), ay);
