@@ -127,8 +127,10 @@ INLINE real fluid_surface_seen(Prim2 n, int n_in, Prim2 c, real h_dry) {
   return fmin(n.ef - n.hf, c.ef);
 }
 
-/// MUSCL reconstruction of both phases of cell c (zero slopes next to outside cells), with the rise
-/// of its solids' bed (bed_rise, solid_bed.cl, point 2). The fluid is reconstructed as the water
+/// MUSCL reconstruction of both phases of cell c, with the rise of its solids' bed (bed_rise,
+/// solid_bed.cl, point 2). The solids: by their surface where they carry lateral pressure
+/// (`hydrostatic`, carries_lateral_pressure), else by their thickness over that bed (solid_bed.cl,
+/// point 2a). The fluid is reconstructed as the water
 /// is (reconstruct_surface, flow_common.cl: its surface with the run's limiter over the minmod of
 /// its bed b + h_s, the thickness slope bounded), first order at its wet/dry fronts and on and next
 /// to the particle bed: its bed is then flat within each cell, so every bed force on the fluid there
@@ -139,15 +141,32 @@ INLINE real fluid_surface_seen(Prim2 n, int n_in, Prim2 c, real h_dry) {
 /// mechanism the water's reconstruction was built against. Second order at its fronts, as the water
 /// has it, broke the momentum balance of water and particle bed by 1.3e-12 of the momentum,
 /// ParticleBed.MomentumOfWaterAndBlockIsConserved, for a reason not traced.)
-INLINE Faces2 reconstruct2(Prim2 m, int m_in, Prim2 c, Prim2 p, int p_in, real rise) {
-  const Prim s0 = {c.hs, c.es, c.us, c.vs}, sm = {m.hs, m.es, m.us, m.vs}, sp = {p.hs, p.es, p.us, p.vs};
+INLINE Faces2 reconstruct2(Prim2 m, int m_in, Prim2 c, Prim2 p, int p_in, real rise, int hydrostatic) {
+  const Prim s0 = {c.hs, c.es, c.us, c.vs};
   const Prim f0 = {c.hf, c.ef, c.uf, c.vf}, fm = {m.hf, m.ef, m.uf, m.vf}, fp = {p.hf, p.ef, p.uf, p.vf};
   const int on_bed = c.hc > (real)0 || (m_in && m.hc > (real)0) || (p_in && p.hc > (real)0);
-  CellFaces s = reconstruct(sm, m_in, s0, sp, p_in);
+  CellFaces s;
+#if DEBRIS_OBSTACLE
+  hydrostatic = 0;  // the particles' share of the bed force is taken against the DEM's linear bed
+#endif
+  if (hydrostatic) {
+    // Material with lateral pressure: its surface over its bed, as the water's (solid_bed.cl, 2a).
+    const Prim w0 = {c.hs, c.es + c.hs, c.us, c.vs}, wm = {m.hs, m.es + m.hs, m.us, m.vs}, wp = {p.hs, p.es + p.hs, p.us, p.vs};
+    s = reconstruct_surface(wm, m_in, w0, wp, p_in);
+    s.e_lo -= s.h_lo;  // the face beds
+    s.e_hi -= s.h_hi;
+  } else {
+    // Its thickness on its own over the linear bed of point 2; velocities alike; first order at its
+    // fronts and next to outside cells.
+    real sh = 0, su = 0, sv = 0;
+    if (m_in && p_in && m.hs > (real)0 && c.hs > (real)0 && p.hs > (real)0) {
+      sh = limited_slope(c.hs - m.hs, p.hs - c.hs);
+      su = limited_slope(c.us - m.us, p.us - c.us);
+      sv = limited_slope(c.vs - m.vs, p.vs - c.vs);
+    }
+    s = faces_of(s0, sh, rise, su, sv);
+  }
   const CellFaces f = reconstruct_surface(fm, m_in && !on_bed && m.hf > (real)0, f0, fp, p_in && !on_bed && p.hf > (real)0);
-  // The solids' bed: reconstructed whatever the solids around (solid_bed.cl, point 2).
-  s.e_lo = c.es - (real)0.5 * rise;
-  s.e_hi = c.es + (real)0.5 * rise;
   Faces2 r;
   r.lo = (Prim2){s.h_lo, s.h_lo + s.e_lo, s.un_lo, s.ut_lo, f.h_lo, f.e_lo, f.un_lo, f.ut_lo, c.hc, s.e_lo};
   r.hi = (Prim2){s.h_hi, s.h_hi + s.e_hi, s.un_hi, s.ut_hi, f.h_hi, f.e_hi, f.un_hi, f.ut_hi, c.hc, s.e_hi};
@@ -184,6 +203,24 @@ INLINE SolidSide solid_side(__constant const DebrisParams* dp, real h, real z, r
   const SolidSide s = {h, z, un, ut, (real)0.5 * K * ((real)1 - m.gamma) * g, (real)2 * m.c_over_rho * sqrt(K), hf,
                        gn * ((real)1 - m.gamma), gn * fmax((real)0, gamma_sat - m.gamma), 0};
   return s;
+}
+
+/// The smallest earth-pressure coefficient of a cell: the constant one, or the active one of its
+/// Savage-Hutter terms (l_ka, l_kroot of the stage kernel).
+INLINE real active_k(__constant const DebrisParams* dp, real ka, real kroot) {
+  if (dp->earth_pressure == EARTH_CONSTANT) return dp->k_const;
+  const EarthPressureTerms t = {ka, kroot};
+  return earth_pressure_at(t, (real)0);
+}
+
+/// Whether a solid column (thickness hs, fluid hf, material m, coefficient K, g_p and g_n of its cell)
+/// is reconstructed by its surface (solid_bed.cl, point 2a): where it is thicker than the dry
+/// threshold and its lateral pressure Pi (solid_side) is positive at its own thickness.
+INLINE int carries_lateral_pressure(__constant const FlowParams* p, __constant const DebrisParams* dp, Material m, real K,
+                                    real hs, real hf, real g, real gn) {
+  if (!(hs > p->h_dry)) return 0;
+  const SolidSide s = solid_side(dp, hs, 0, 0, 0, hf, K, m, g, gn);
+  return side_pi(s, hs) > (real)0;
 }
 
 /// The push a static column (thickness hs, material m, g_n of its cell) holds through one face beyond
@@ -324,15 +361,20 @@ void debris_stage(__constant const FlowParams* p, __constant const DebrisParams*
     const int mm_in = m_in && cell_inside(p, mask, i - 2 * di, j - 2 * dj);
     const int pp_in = p_in && cell_inside(p, mask, i + 2 * di, j + 2 * dj);
     const int kmm = mm_in ? cell_index(p, i - 2 * di, j - 2 * dj) : km, kpp = pp_in ? cell_index(p, i + 2 * di, j + 2 * dj) : kp;
-    const Faces2 own = reconstruct2(cm, m_in, c0, cp, p_in, bed_rise(BED(kmm), mm_in, cm.es, m_in, c0.es, cp.es, p_in, BED(kpp), pp_in));
+    const Material mm = m_in ? material_of(p, dp, S_st, hf_st, delta, km, n) : mc;
+    const Material mp = p_in ? material_of(p, dp, S_st, hf_st, delta, kp, n) : mc;
+    const int hyd_c = carries_lateral_pressure(p, dp, mc, active_k(dp, l_ka[lc], l_kroot[lc]), c0.hs, c0.hf, g, gnk);
+    const Faces2 own = reconstruct2(cm, m_in, c0, cp, p_in, bed_rise(BED(kmm), mm_in, cm.es, m_in, c0.es, cp.es, p_in, BED(kpp), pp_in), hyd_c);
     Faces2 fm_cell = own, fp_cell = own;
     if (m_in) {
       const Prim2 cmm = mm_in ? load_prim2(p, dp, S_st, hf_st, qfx_st, qfy_st, b, pbed, kmm, n, dir) : cm;
-      fm_cell = reconstruct2(cmm, mm_in, cm, c0, 1, bed_rise(cmm.es, 0, cmm.es, mm_in, cm.es, c0.es, 1, cp.es, p_in));
+      const int hyd_m = carries_lateral_pressure(p, dp, mm, active_k(dp, l_ka[lm], l_kroot[lm]), cm.hs, cm.hf, gp[km], gn[km]);
+      fm_cell = reconstruct2(cmm, mm_in, cm, c0, 1, bed_rise(cmm.es, 0, cmm.es, mm_in, cm.es, c0.es, 1, cp.es, p_in), hyd_m);
     }
     if (p_in) {
       const Prim2 cpp = pp_in ? load_prim2(p, dp, S_st, hf_st, qfx_st, qfy_st, b, pbed, kpp, n, dir) : cp;
-      fp_cell = reconstruct2(c0, 1, cp, cpp, pp_in, bed_rise(cm.es, m_in, c0.es, 1, cp.es, cpp.es, pp_in, cpp.es, 0));
+      const int hyd_p = carries_lateral_pressure(p, dp, mp, active_k(dp, l_ka[lp], l_kroot[lp]), cp.hs, cp.hf, gp[kp], gn[kp]);
+      fp_cell = reconstruct2(c0, 1, cp, cpp, pp_in, bed_rise(cm.es, m_in, c0.es, 1, cp.es, cpp.es, pp_in, cpp.es, 0), hyd_p);
     }
     const int kind_m = boundary_kind(p, i - di, j - dj), kind_p = boundary_kind(p, i + di, j + dj);
     const real gm = gp[km], gpp = gp[kp];
@@ -352,8 +394,6 @@ void debris_stage(__constant const FlowParams* p, __constant const DebrisParams*
     // Solid faces: each side's lateral pressure with its cell's K (active where its solids extend
     // along dir, passive where they contract), from its face thickness of the mixture, and the
     // terrain factor of its cell (curvature of the bed, solid_bed.cl).
-    const Material mm = m_in ? material_of(p, dp, S_st, hf_st, delta, km, n) : mc;
-    const Material mp = p_in ? material_of(p, dp, S_st, hf_st, delta, kp, n) : mc;
     real Km, Kc, Kp;
     if (dp->earth_pressure == EARTH_CONSTANT) {
       Km = Kc = Kp = dp->k_const;

@@ -170,26 +170,8 @@ INLINE CellFaces dry_faces(CellFaces f, real h_dry) {
   return f;
 }
 
-/// MUSCL reconstruction of cell C from its neighbours M (minus side) and P (plus side) along the
-/// direction. A neighbour outside the domain gives a zero slope (first order next to boundaries),
-/// which is also what the limiter returns for a mirrored ghost cell's thickness and surface; so does
-/// a dry cell or a dry neighbour (first order at wet/dry fronts).
-INLINE CellFaces reconstruct(Prim m, int m_in, Prim c, Prim pl, int p_in) {
-  real sh = 0, se = 0, su = 0, sv = 0;
-  // First order at wet/dry fronts (a dry cell or a dry neighbour): on steep slopes a limited surface
-  // slope in a dry cell can put its face bed above a wet neighbour's surface, which would block the
-  // flow while the bed source keeps accelerating the water in place (found by the stress suite).
-  if (m_in && p_in && m.h > (real)0 && c.h > (real)0 && pl.h > (real)0) {
-    sh = limited_slope(c.h - m.h, pl.h - c.h);
-    se = limited_slope(c.e - m.e, pl.e - c.e);
-    su = limited_slope(c.un - m.un, pl.un - c.un);
-    sv = limited_slope(c.ut - m.ut, pl.ut - c.ut);
-  }
-  return faces_of(c, sh, se, su, sv);
-}
-
-/// MUSCL reconstruction of a shallow-water cell (the water stage; the fluid of the two-phase model
-/// uses `reconstruct`): the free surface eta with the run's limiter, over the bed reconstructed with
+/// MUSCL reconstruction of a shallow-water cell (the water stage and the fluid of the two-phase
+/// model): the free surface eta with the run's limiter, over the bed reconstructed with
 /// minmod (bed_minmod), so the face thickness is h +- (s_eta - s_b) / 2 (the cell's volume is kept).
 /// Reconstructing the bed as eta - h with the compressive limiters (MC and van Leer allow twice the
 /// smaller one-sided difference) put false rises into a monotone bed wherever the water is thin

@@ -28,6 +28,29 @@
 //    one-sided differences (next to outside cells the one-sided difference limited by the next one
 //    inward, bed_rise), whatever the solids in and around the cell: a plane is exact, and a DEM
 //    step, a pit rim or a kink is a jump of the reconstructed bed at a face.
+// 2a. The reconstructed thickness (reconstruct2, debris_stage.cl). Material that carries lateral
+//    pressure (Pi > 0 at its own thickness, above the dry threshold) is reconstructed as the water
+//    is (reconstruct_surface, flow_common.cl): its surface w = b + h with the run's limiter over the
+//    minmod bed of point 2, the thickness slope bounded by the maximum principle or by the slope the
+//    surface and the bed give when both are limited alike, and the bed flattened where only that
+//    keeps the faces positive (a shoreline inside the cell, or the foot of a ramp steeper than the
+//    column is deep): the part of the bed's change the cell no longer carries is a jump at its face,
+//    which point 3 handles. A layer of uniform thickness still follows its bed (s_w = L(b)), and a
+//    level deposit has level face surfaces, so no face pushes it: with K = 1 a level surface is the
+//    model's rest state without friction, and it stays at rest over any bed
+//    (SolidSteps.LevelDepositOverARoughFloorStaysAtRest). Material without lateral pressure (cohesion
+//    above its overburden) has no surface to balance: its thickness is limited on its own, first
+//    order at its fronts and next to outside cells, over the bed of point 2, which carries a rigid
+//    block and a sheet exactly (Granular.RigidBlockSlidesWithExactAcceleration,
+//    CohesionTransport.*). Before (until 2026-12-07) every solid was reconstructed that way. Then a
+//    column at the foot of a ramp steeper than it was deep stood at its face as a layer following
+//    the ramp: a 50 m column at the foot of a 97 m rise had its face surface 48 m above its level
+//    surface, and its pressure drove it up the ramp as a dam break (two-phase soak seed
+//    1355826582887882713). Inside a deposit, MC's thickness slope, twice minmod's bed slope, tilted
+//    a level surface at a pit's floor (2306745511091219079), and a level deposit over a rough floor
+//    slid at up to 2.9 m/s. In hybrid runs (particles) the solids keep the thickness
+//    reconstruction: the particles' share of the bed force is the difference from the DEM's own
+//    linear bed.
 // 3. A face between two reconstructed beds (hydrostatic reconstruction with a subcell bed, after
 //    Chen & Noelle 2017, SIAM J. Numer. Anal. 55, eq. 3.4-3.9): the face bed is
 //      z* = min(max(z_L, z_R), min(w_L, w_R))          (w = z + h, the solid surface at the face),

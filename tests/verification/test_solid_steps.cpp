@@ -247,3 +247,50 @@ TEST(SolidSteps, FlowIntoAStepComesToRestAsAgainstTheWall) {
   EXPECT_NEAR(a.rear, b.rear, 1.5 * dx);
   EXPECT_NEAR(a.peak, b.peak, 0.05 * b.peak);
 }
+
+// A level deposit over a rough floor (issue 13, item 2; two-phase soak seed 2306745511091219079).
+// 24 x 24 cells of 1 m, a bowl (0.02 r^2) with per-cell noise of +-0.3 m (local slopes up to ~0.6),
+// cohesionless solids filled to a level surface at 3 m (the bowl's rim cells stay empty), K = 1, no
+// fluid, walls. K = 1 is the water's lateral pressure, so a level surface is the model's rest state
+// without friction, whatever the bed: nothing may move, whatever the friction angle. Before the
+// solids reconstructed their surface (solid_bed.cl, point 2a) their thickness was limited apart
+// from their bed, and where MC's thickness slope differed from the bed's minmod slope the face
+// surfaces were not level: with delta = 15 deg the deposit reached 1.3 m/s, with 5 deg 2.9 m/s.
+// Expected: thickness bitwise unchanged and momentum exactly 0 after 300 steps, for delta = 5, 15
+// and 30 deg with the slope correction off (g_n = g_p = g), and for 15 and 30 deg with it on (there
+// g_p and g_n, g cos^2 of each cell's slope, differ between neighbouring cells, so a level surface
+// is only nearly the rest state and friction holds the remainder).
+TEST(SolidSteps, LevelDepositOverARoughFloorStaysAtRest) {
+  struct Case {
+    double delta;
+    bool slopeCorrection;
+  };
+  for (const Case c : {Case{5.0, false}, Case{15.0, false}, Case{30.0, false}, Case{15.0, true}, Case{30.0, true}}) {
+    const Grid g = Grid::make(24, 24, 1.0);
+    test::SolidMaterial mat;
+    mat.phi = mat.delta = c.delta * kDeg;
+    fl::FlowInput in = test::debrisInput(g, mat, 0.05);
+    unsigned state = 12345u;
+    for (int j = 0; j < g.ny; ++j)
+      for (int i = 0; i < g.nx; ++i) {
+        state = state * 1103515245u + 12345u;
+        const double noise = static_cast<double>((state >> 8) & 0xffffu) / 65535.0 - 0.5;
+        const std::size_t k = g.index(i, j);
+        in.bed[k] = 0.02 * ((i - 12) * (i - 12) + (j - 12) * (j - 12)) + 0.6 * noise;
+        in.hs[k] = std::max(0.0, 3.0 - in.bed[k]);
+      }
+    fl::FlowSettings s = restSettings(false);
+    s.slopeCorrection = c.slopeCorrection;
+    fl::FlowSolver solver(test::testContext(compute::Precision::Double), g, s);
+    solver.setInput(in);
+    EXPECT_EQ(test::advance(solver, test::RunLimits::steps(300)), 300);
+    const auto st = test::readState(solver);
+    double qmax = 0;
+    for (std::size_t k = 0; k < g.cells(); ++k) qmax = std::max(qmax, std::hypot(st.qsx[k], st.qsy[k]));
+    std::printf("[ level deposit over a rough floor, delta %.0f, slope correction %d ] max |q_s| %.3e m^2/s, thickness %s\n",
+                c.delta, c.slopeCorrection ? 1 : 0, qmax, st.hs == in.hs ? "unchanged" : "changed");
+    EXPECT_EQ(qmax, 0.0) << "delta " << c.delta << ", slope correction " << c.slopeCorrection;
+    EXPECT_TRUE(st.hs == in.hs) << "delta " << c.delta << ", slope correction " << c.slopeCorrection;
+  }
+  std::fflush(stdout);
+}
