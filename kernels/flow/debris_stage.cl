@@ -129,7 +129,7 @@ INLINE real fluid_surface_seen(Prim2 n, int n_in, Prim2 c, real h_dry) {
 
 /// MUSCL reconstruction of both phases of cell c, with the rise of its solids' bed (bed_rise,
 /// solid_bed.cl, point 2). The solids: by their surface where they carry lateral pressure
-/// (`hydrostatic`, carries_lateral_pressure), else by their thickness over that bed (solid_bed.cl,
+/// (`hydrostatic`: carries_lateral_pressure, taken once per cell in the stage's halo), else by their thickness over that bed (solid_bed.cl,
 /// point 2a). The fluid is reconstructed as the water
 /// is (reconstruct_surface, flow_common.cl: its surface with the run's limiter over the minmod of
 /// its bed b + h_s, the thickness slope bounded), first order at its wet/dry fronts and on and next
@@ -146,9 +146,6 @@ INLINE Faces2 reconstruct2(Prim2 m, int m_in, Prim2 c, Prim2 p, int p_in, real r
   const Prim f0 = {c.hf, c.ef, c.uf, c.vf}, fm = {m.hf, m.ef, m.uf, m.vf}, fp = {p.hf, p.ef, p.uf, p.vf};
   const int on_bed = c.hc > (real)0 || (m_in && m.hc > (real)0) || (p_in && p.hc > (real)0);
   CellFaces s;
-#if DEBRIS_OBSTACLE
-  hydrostatic = 0;  // the particles' share of the bed force is taken against the DEM's linear bed
-#endif
   if (hydrostatic) {
     // Material with lateral pressure: its surface over its bed, as the water's (solid_bed.cl, 2a).
     const Prim w0 = {c.hs, c.es + c.hs, c.us, c.vs}, wm = {m.hs, m.es + m.hs, m.us, m.vs}, wp = {p.hs, p.es + p.hs, p.us, p.vs};
@@ -203,14 +200,6 @@ INLINE SolidSide solid_side(__constant const DebrisParams* dp, real h, real z, r
   const SolidSide s = {h, z, un, ut, (real)0.5 * K * ((real)1 - m.gamma) * g, (real)2 * m.c_over_rho * sqrt(K), hf,
                        gn * ((real)1 - m.gamma), gn * fmax((real)0, gamma_sat - m.gamma), 0};
   return s;
-}
-
-/// The smallest earth-pressure coefficient of a cell: the constant one, or the active one of its
-/// Savage-Hutter terms (l_ka, l_kroot of the stage kernel).
-INLINE real active_k(__constant const DebrisParams* dp, real ka, real kroot) {
-  if (dp->earth_pressure == EARTH_CONSTANT) return dp->k_const;
-  const EarthPressureTerms t = {ka, kroot};
-  return earth_pressure_at(t, (real)0);
 }
 
 /// Whether a solid column (thickness hs, fluid hf, material m, coefficient K, g_p and g_n of its cell)
@@ -302,24 +291,34 @@ void debris_stage(__constant const FlowParams* p, __constant const DebrisParams*
   // The material's trigonometry, once per cell of the tile and its one-cell halo: the stage needs it
   // for each cell and its four neighbours (earth pressure, the static contacts' strength), and its
   // cos and tan were 37 % of the step when each use evaluated them again (docs/performance.md).
+  // With it, whether its solids are reconstructed by their surface (solid_bed.cl, point 2a; with the
+  // smallest K the law gives; never in hybrid runs, whose particles' share of the bed force is taken
+  // against the DEM's linear bed).
   __local real l_ka[MSPAN * MSPAN], l_kroot[MSPAN * MSPAN], l_tand[MSPAN * MSPAN];
+  __local uchar l_hyd[MSPAN * MSPAN];
   {
     const int x0 = i - (int)get_local_id(0) - 1, y0 = j - (int)get_local_id(1) - 1;
     for (int s = get_local_id(1) * TILE + get_local_id(0); s < MSPAN * MSPAN; s += TILE * TILE) {
       const int gi = x0 + s % MSPAN, gj = y0 + s / MSPAN;
       real ka = 0, kroot = 0, tand = 0;
+      int hyd = 0;
       if (cell_inside(p, mask, gi, gj)) {
-        const Material m = material_of(p, dp, S_st, hf_st, delta, cell_index(p, gi, gj), n);
+        const int kk = cell_index(p, gi, gj);
+        const Material m = material_of(p, dp, S_st, hf_st, delta, kk, n);
+        real K = dp->k_const;
         if (dp->earth_pressure != EARTH_CONSTANT) {
           const EarthPressureTerms t = earth_pressure_terms(m.phi, m.delta);
           ka = t.a;
           kroot = t.root;
+          K = earth_pressure_at(t, (real)0);
         }
         tand = tan(m.delta);
+        hyd = !DEBRIS_OBSTACLE && carries_lateral_pressure(p, dp, m, K, S_st[kk], hf_st[kk], gp[kk], gn[kk]);
       }
       l_ka[s] = ka;
       l_kroot[s] = kroot;
       l_tand[s] = tand;
+      l_hyd[s] = (uchar)hyd;
     }
   }
   barrier(CLK_LOCAL_MEM_FENCE);
@@ -361,20 +360,15 @@ void debris_stage(__constant const FlowParams* p, __constant const DebrisParams*
     const int mm_in = m_in && cell_inside(p, mask, i - 2 * di, j - 2 * dj);
     const int pp_in = p_in && cell_inside(p, mask, i + 2 * di, j + 2 * dj);
     const int kmm = mm_in ? cell_index(p, i - 2 * di, j - 2 * dj) : km, kpp = pp_in ? cell_index(p, i + 2 * di, j + 2 * dj) : kp;
-    const Material mm = m_in ? material_of(p, dp, S_st, hf_st, delta, km, n) : mc;
-    const Material mp = p_in ? material_of(p, dp, S_st, hf_st, delta, kp, n) : mc;
-    const int hyd_c = carries_lateral_pressure(p, dp, mc, active_k(dp, l_ka[lc], l_kroot[lc]), c0.hs, c0.hf, g, gnk);
-    const Faces2 own = reconstruct2(cm, m_in, c0, cp, p_in, bed_rise(BED(kmm), mm_in, cm.es, m_in, c0.es, cp.es, p_in, BED(kpp), pp_in), hyd_c);
+    const Faces2 own = reconstruct2(cm, m_in, c0, cp, p_in, bed_rise(BED(kmm), mm_in, cm.es, m_in, c0.es, cp.es, p_in, BED(kpp), pp_in), l_hyd[lc]);
     Faces2 fm_cell = own, fp_cell = own;
     if (m_in) {
       const Prim2 cmm = mm_in ? load_prim2(p, dp, S_st, hf_st, qfx_st, qfy_st, b, pbed, kmm, n, dir) : cm;
-      const int hyd_m = carries_lateral_pressure(p, dp, mm, active_k(dp, l_ka[lm], l_kroot[lm]), cm.hs, cm.hf, gp[km], gn[km]);
-      fm_cell = reconstruct2(cmm, mm_in, cm, c0, 1, bed_rise(cmm.es, 0, cmm.es, mm_in, cm.es, c0.es, 1, cp.es, p_in), hyd_m);
+      fm_cell = reconstruct2(cmm, mm_in, cm, c0, 1, bed_rise(cmm.es, 0, cmm.es, mm_in, cm.es, c0.es, 1, cp.es, p_in), l_hyd[lm]);
     }
     if (p_in) {
       const Prim2 cpp = pp_in ? load_prim2(p, dp, S_st, hf_st, qfx_st, qfy_st, b, pbed, kpp, n, dir) : cp;
-      const int hyd_p = carries_lateral_pressure(p, dp, mp, active_k(dp, l_ka[lp], l_kroot[lp]), cp.hs, cp.hf, gp[kp], gn[kp]);
-      fp_cell = reconstruct2(c0, 1, cp, cpp, pp_in, bed_rise(cm.es, m_in, c0.es, 1, cp.es, cpp.es, pp_in, cpp.es, 0), hyd_p);
+      fp_cell = reconstruct2(c0, 1, cp, cpp, pp_in, bed_rise(cm.es, m_in, c0.es, 1, cp.es, cpp.es, pp_in, cpp.es, 0), l_hyd[lp]);
     }
     const int kind_m = boundary_kind(p, i - di, j - dj), kind_p = boundary_kind(p, i + di, j + dj);
     const real gm = gp[km], gpp = gp[kp];
@@ -394,6 +388,8 @@ void debris_stage(__constant const FlowParams* p, __constant const DebrisParams*
     // Solid faces: each side's lateral pressure with its cell's K (active where its solids extend
     // along dir, passive where they contract), from its face thickness of the mixture, and the
     // terrain factor of its cell (curvature of the bed, solid_bed.cl).
+    const Material mm = m_in ? material_of(p, dp, S_st, hf_st, delta, km, n) : mc;
+    const Material mp = p_in ? material_of(p, dp, S_st, hf_st, delta, kp, n) : mc;
     real Km, Kc, Kp;
     if (dp->earth_pressure == EARTH_CONSTANT) {
       Km = Kc = Kp = dp->k_const;
