@@ -3,7 +3,8 @@
 //
 // Build options: -DLIMITER=0 (minmod) | 1 (van Leer) | 2 (monotonised central) | 3 (none: first order),
 //                -DRIEMANN=0 (HLL) | 1 (HLLC), -DTILE=16 (tile edge in cells),
-//                -DSPLIT=0 (unsplit time scheme) | 1 (dimensionally split: per-direction CFL speed).
+//                -DSPLIT=0 (unsplit time scheme) | 1 (dimensionally split: per-direction CFL speed),
+//                -DHANCOCK=0 | 1 (the split sweeps as one MUSCL-Hancock stage each: flow/hancock.cl).
 #ifndef TALUS_FLOW_COMMON_CL
 #define TALUS_FLOW_COMMON_CL
 #include "common/real.cl"
@@ -19,6 +20,9 @@
 #endif
 #ifndef SPLIT
 #define SPLIT 0
+#endif
+#ifndef HANCOCK
+#define HANCOCK 0
 #endif
 
 #define BOUNDARY_WALL 0
@@ -214,7 +218,18 @@ INLINE CellFaces reconstruct_surface(Prim m, int m_in, Prim c, Prim pl, int p_in
   if (!(m_in && p_in && c.h > (real)0)) return f;
   const real db_m = (c.e - c.h) - (m.e - m.h), db_p = (pl.e - pl.h) - (c.e - c.h);
   const real sb_dem = bed_minmod(db_m, db_p);
+#if HANCOCK
+  // An empty neighbour whose bed stands above the cell's surface is a wall, not a sample of the
+  // surface (a reflecting wall's ghost has the cell's own surface: difference 0). With its bed as a
+  // surface sample MC steepened a pond's surface towards a dry rise to twice minmod's, and under the
+  // one-stage MUSCL-Hancock scheme a lake among dry islands grew round-off
+  // (tools/validation/hancock_lake_1d.py, variant (b)).
+  const real de_m = (m.h <= (real)0 && m.e > c.e) ? (real)0 : c.e - m.e;
+  const real de_p = (pl.h <= (real)0 && pl.e > c.e) ? (real)0 : pl.e - c.e;
+  const real se = limited_slope(de_m, de_p);
+#else
   const real se = limited_slope(c.e - m.e, pl.e - c.e);
+#endif
   // Face thicknesses h -+ (se - sb) / 2, with the bed's slope sb between 0 and the minmod one, and
   // |se - sb| <= bound: within [h_min, h_max] of the cell and its two neighbours, or within the
   // thickness slope of the surface and the bed limited alike, se - L(bed), if that is larger; never

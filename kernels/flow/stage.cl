@@ -44,10 +44,15 @@
 // the wave speeds, Courant number 1 per sweep. theta needs the outflow of the tile's neighbour cells
 // along the sweep, hence one more halo cell.
 #include "flow/riemann.cl"
+#include "flow/hancock.cl"
 
 // The split sweeps (-DSPLIT=1) always limit draining cells; the unsplit stage never does.
 #define DRAINING SPLIT
-#if DRAINING
+#if DRAINING && HANCOCK
+#define HALO 4    // the predictor's passing discharges need the neighbours' MUSCL faces (local_faces)
+#define RING 1
+#define FACE_SLOTS 1
+#elif DRAINING
 #define HALO 3
 #define RING 1        // cells beyond the tile, along the sweep, whose draining factor is needed
 #define FACE_SLOTS 1  // one direction per launch (the split scheme's sweeps)
@@ -75,8 +80,11 @@ INLINE Prim local_prim(__local const real* lh, __local const real* le, __local c
   return c;
 }
 
+INLINE Side side_hi(CellFaces f, real g) { Side s = {f.h_hi, f.e_hi, f.un_hi, f.ut_hi, g}; return s; }
+INLINE Side side_lo(CellFaces f, real g) { Side s = {f.h_lo, f.e_lo, f.un_lo, f.ut_lo, g}; return s; }
+
 /// MUSCL face values of the local cell (a, b) along `dir` (neighbours at -1 and +1).
-INLINE CellFaces local_faces(__local const real* lh, __local const real* le, __local const real* lu,
+INLINE CellFaces muscl_faces(__local const real* lh, __local const real* le, __local const real* lu,
                              __local const real* lv, __local const uchar* lin, int a, int b, int dir, real h_dry) {
   const int da = dir == 0, db = dir == 1;
   const int m_in = lin[(b - db) * SPAN + a - da], p_in = lin[(b + db) * SPAN + a + da];
@@ -86,8 +94,34 @@ INLINE CellFaces local_faces(__local const real* lh, __local const real* le, __l
   return dry_faces(reconstruct_surface(m, m_in, c, p, p_in), h_dry);
 }
 
-INLINE Side side_hi(CellFaces f, real g) { Side s = {f.h_hi, f.e_hi, f.un_hi, f.ut_hi, g}; return s; }
-INLINE Side side_lo(CellFaces f, real g) { Side s = {f.h_lo, f.e_lo, f.un_lo, f.ut_lo, g}; return s; }
+/// The face values the stage's fluxes use: the MUSCL ones, in the MUSCL-Hancock build advanced by
+/// half a step (flow/hancock.cl; r = dt / (2 dx), the cell's g_p). The predictor's mass fluxes are
+/// the discharges that the corrector's faces pass (hancock_passing_discharge), from the neighbours'
+/// MUSCL faces (two cells further than the stencil of muscl_faces: HALO 4).
+INLINE CellFaces local_faces(__local const real* lh, __local const real* le, __local const real* lu,
+                             __local const real* lv, __local const real* lg, __local const uchar* lin, int a, int b,
+                             int dir, real r, real h_dry) {
+  const CellFaces f = muscl_faces(lh, le, lu, lv, lin, a, b, dir, h_dry);
+#if HANCOCK
+  const int da = dir == 0, db = dir == 1;
+  const int m_in = lin[(b - db) * SPAN + a - da], p_in = lin[(b + db) * SPAN + a + da];
+  const real g = lg[b * SPAN + a];
+  real q_lo = f.h_lo * f.un_lo, q_hi = f.h_hi * f.un_hi;
+  if (m_in && f.h_lo > (real)0) {
+    const CellFaces fm = muscl_faces(lh, le, lu, lv, lin, a - da, b - db, dir, h_dry);
+    q_lo = hancock_passing_discharge(side_hi(fm, lg[(b - db) * SPAN + a - da]), side_lo(f, g)).y;
+  }
+  if (p_in && f.h_hi > (real)0) {
+    const CellFaces fp = muscl_faces(lh, le, lu, lv, lin, a + da, b + db, dir, h_dry);
+    q_hi = hancock_passing_discharge(side_hi(f, g), side_lo(fp, lg[(b + db) * SPAN + a + da])).x;
+  }
+  return dry_faces(hancock_predict(f, q_lo, q_hi, g, r, h_dry), h_dry);
+#else
+  (void)lg;
+  (void)r;
+  return f;
+#endif
+}
 
 /// Local position of the minus-side cell of face q in row r along `dir` (the plus side is the next
 /// cell along `dir`). Face q = RING + t + 1 is the plus face of the tile's cell t of that row.
@@ -114,7 +148,7 @@ void flow_stage(__constant const FlowParams* p, __global const uchar* mask, __gl
   const int tile = tile_list[get_group_id(0)];
   const int x0 = (tile % p->tiles_x) * TILE - HALO, y0 = (tile / p->tiles_x) * TILE - HALO;
   const int lid = get_local_id(1) * TILE + get_local_id(0);
-  const real dtdx = dt / p->dx;
+  const real dtdx = dt / p->dx, hr = (real)0.5 * dtdx;  // hr: the Hancock predictor's dt / (2 dx)
 
   // 1. Tile and halo into local memory: h, eta = h + b, u, v, g_p and the inside flag.
   for (int s = lid; s < SPAN * SPAN; s += TILE * TILE) {
@@ -148,8 +182,8 @@ void flow_stage(__constant const FlowParams* p, __global const uchar* mask, __gl
       const int m_in = lin[sm], p_in = lin[sp];
       Face fc = {0, 0, 0, 0, 0, 0};
       if (m_in || p_in) {
-        const CellFaces mf = local_faces(lh, le, lu, lv, lin, m_in ? am : ap, m_in ? bm : bp, dir, p->h_dry);
-        const CellFaces pf = p_in ? local_faces(lh, le, lu, lv, lin, ap, bp, dir, p->h_dry) : mf;
+        const CellFaces mf = local_faces(lh, le, lu, lv, lg, lin, m_in ? am : ap, m_in ? bm : bp, dir, hr, p->h_dry);
+        const CellFaces pf = p_in ? local_faces(lh, le, lu, lv, lg, lin, ap, bp, dir, hr, p->h_dry) : mf;
         const int outside_a = m_in ? ap : am, outside_b = m_in ? bp : bm;
         const real far = (m_in && p_in) ? (real)0 : far_level[cell_index(p, x0 + (m_in ? am : ap), y0 + (m_in ? bm : bp))];
         fc = face_between(m_in, side_hi(mf, lg[sm]), p_in, side_lo(pf, lg[sp]),
@@ -222,7 +256,7 @@ void flow_stage(__constant const FlowParams* p, __global const uchar* mask, __gl
     // and the centred well-balanced bed source from the cell's own reconstruction.
     real s = (ffqn[op] + g * (ffp[op] + ffcm[op])) - (ffqn[om] + g * (ffp[om] + ffcp[om]));
     if (lh[sc] > (real)0) {
-      const CellFaces own = local_faces(lh, le, lu, lv, lin, la, lb, dir, p->h_dry);
+      const CellFaces own = local_faces(lh, le, lu, lv, lg, lin, la, lb, dir, hr, p->h_dry);
       s += g * (real)0.5 * (own.h_lo + own.h_hi) * ((own.e_hi - own.h_hi) - (own.e_lo - own.h_lo));
       const real dg = g - gn[k];  // exactly zero with the default depth pressure (g_p == g_n)
       if (dg != (real)0 && m_in && p_in)

@@ -47,7 +47,8 @@ DragLaw parseDragLaw(const std::string& name) {
 TimeScheme parseTimeScheme(const std::string& name) {
   if (name == "unsplit") return TimeScheme::Unsplit;
   if (name == "split") return TimeScheme::Split;
-  throw InputError("time scheme '" + name + "' is not one of: unsplit, split");
+  if (name == "hancock") return TimeScheme::Hancock;
+  throw InputError("time scheme '" + name + "' is not one of: unsplit, split, hancock");
 }
 
 }  // namespace talus::flow

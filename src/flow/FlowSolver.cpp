@@ -22,7 +22,9 @@ std::string buildOptions(const FlowSettings& s) {
          // Manning's friction acts along the bed where the slope correction is on (flow/manning.cl).
          " -DMANNING_ALONG_BED=" + (s.slopeCorrection ? "1" : "0") +
          // SPLIT: the split sweeps, which stay positive by the draining time up to CFL 1 (stage.cl).
-         " -DSPLIT=" + (s.scheme == TimeScheme::Split ? "1" : "0");
+         " -DSPLIT=" + (sweeps(s.scheme) ? "1" : "0") +
+         // HANCOCK: each sweep one MUSCL-Hancock stage (flow_common.cl, hancock_predict).
+         " -DHANCOCK=" + (s.scheme == TimeScheme::Hancock ? "1" : "0");
 }
 
 template <class Real>
@@ -79,11 +81,11 @@ FlowSolver::FlowSolver(compute::Context& ctx, const Grid& grid, const FlowSettin
       reducer_(ctx) {
   if (grid.nx < 1 || grid.ny < 1 || !(grid.dx > 0)) throw InputError("flow solver needs a grid of at least 1x1 cells");
   if (!(settings.cfl > 0 && settings.cfl <= 1.0)) throw InputError("CFL must lie in (0, 1]");
-  if (settings.cfl > kPositiveCfl && settings.scheme != TimeScheme::Split)
-    throw InputError("a CFL above 0.5 needs Time Scheme=split (water only): the unsplit stage is positive only up "
-                     "to 0.5");
+  if (settings.cfl > kPositiveCfl && !sweeps(settings.scheme))
+    throw InputError("a CFL above 0.5 needs Time Scheme=split or hancock (water only): the unsplit stage is positive "
+                     "only up to 0.5");
   if (settings.particleBed && !settings.twoPhase) throw InputError("the particle bed needs the two-phase grid model");
-  if (settings.twoPhase && settings.scheme == TimeScheme::Split)
+  if (settings.twoPhase && sweeps(settings.scheme))
     throw InputError("the dimensionally split time scheme is for water only (the two-phase model runs unsplit)");
   const std::string opts = buildOptions(settings);
   stage_ = compute::Kernel(ctx.program("flow/stage.cl", opts), "flow_stage");
@@ -222,21 +224,29 @@ void FlowSolver::step(double dt, double rainDepth) {
     enqueueDebrisStage(false, dt);
     if (settings_.entrainment.enabled) enqueueEntrainment(dt);
   } else {
-    if (settings_.scheme == TimeScheme::Split) {
-      // One SSP-RK2 sweep per direction, x first on even steps and y first on odd ones (the
-      // alternation makes Lie splitting second order, as Strang's symmetric form; Strang 1968).
+    if (sweeps(settings_.scheme)) {
+      // One sweep per direction, x first on even steps and y first on odd ones (the alternation
+      // makes Lie splitting second order, as Strang's symmetric form; Strang 1968). A sweep is one
+      // SSP-RK2 (two stages) or one MUSCL-Hancock stage (its predictor is in the stage kernel).
       const int first = (splitStep_ % 2 == 0) ? kDirX : kDirY;
       const int second = first == kDirX ? kDirY : kDirX;
-      enqueueStage(h_, qx_, qy_, h1_, qx1_, qy1_, dt, 0.0, true, first);
-      enqueueStage(h1_, qx1_, qy1_, h_, qx_, qy_, dt, 0.5, false, first);
-      enqueueStage(h_, qx_, qy_, h1_, qx1_, qy1_, dt, 0.0, false, second);
-      enqueueStage(h1_, qx1_, qy1_, h_, qx_, qy_, dt, 0.5, false, second);
+      if (settings_.scheme == TimeScheme::Hancock) {
+        // Friction Strang-split around the sweeps (flow/hancock.cl): dt/2 here, dt/2 after.
+        if (hasFriction_) enqueueFriction(0.5 * dt);
+        enqueueStage(h_, qx_, qy_, h1_, qx1_, qy1_, dt, 0.0, true, first);
+        enqueueStage(h1_, qx1_, qy1_, h_, qx_, qy_, dt, 0.0, false, second);
+      } else {
+        enqueueStage(h_, qx_, qy_, h1_, qx1_, qy1_, dt, 0.0, true, first);
+        enqueueStage(h1_, qx1_, qy1_, h_, qx_, qy_, dt, 0.5, false, first);
+        enqueueStage(h_, qx_, qy_, h1_, qx1_, qy1_, dt, 0.0, false, second);
+        enqueueStage(h1_, qx1_, qy1_, h_, qx_, qy_, dt, 0.5, false, second);
+      }
       ++splitStep_;
     } else {
       enqueueStage(h_, qx_, qy_, h1_, qx1_, qy1_, dt, 0.0, true, kDirX | kDirY);
       enqueueStage(h1_, qx1_, qy1_, h_, qx_, qy_, dt, 0.5, false, kDirX | kDirY);
     }
-    if (hasFriction_) enqueueFriction(dt);
+    if (hasFriction_) enqueueFriction(settings_.scheme == TimeScheme::Hancock ? 0.5 * dt : dt);
   }
   // Rain and infiltration act on the water: the single-phase model's, or the fluid phase of the
   // two-phase model (h_, qx_, qy_ hold the fluid there too), after the phases' own step.
@@ -259,7 +269,7 @@ void FlowSolver::applySources(double dt, double rainDepth) {
 double FlowSolver::filmStableDt() const {
   if (!(maxSlopeSpeed_ > 0)) return std::numeric_limits<double>::infinity();
   // The film's wave speed is 2 w over both directions (unsplit), w along one (split).
-  const double directions = settings_.scheme == TimeScheme::Split ? 1.0 : 2.0;
+  const double directions = sweeps(settings_.scheme) ? 1.0 : 2.0;
   return settings_.cfl * grid_.dx / (directions * maxSlopeSpeed_);
 }
 
@@ -281,7 +291,8 @@ void FlowSolver::enqueueStage(const compute::RealBuffer& hSt, const compute::Rea
   // Base state of the RK combination is always U0 (h_, qx_, qy_); in stage 2 the output is U0 too,
   // which is safe because each work-item reads its own cell's base value before writing it.
   stage_.bind(params_, mask_, tileList_, bed_, gp_, gn_, farLevel_, h_, qx_, qy_, hSt, qxSt, qySt, hOut, qxOut, qyOut,
-              outStep_, compute::RealArg{dt}, compute::RealArg{a}, compute::RealArg{0.5 * dt}, firstStage ? 1 : 0,
+              outStep_, compute::RealArg{dt}, compute::RealArg{a},
+              compute::RealArg{settings_.scheme == TimeScheme::Hancock ? dt : 0.5 * dt}, firstStage ? 1 : 0,
               directions);
   stage_.launch(tileRange(), kLocal2D, firstStage ? "flow_stage_1" : "flow_stage_2");
 }
@@ -343,7 +354,7 @@ std::vector<char> FlowSolver::saveState() const {
     f->readBytes(bytes.data() + at, f->bytes());
   }
   // The split scheme's sweep order of the next step (one byte; unsplit checkpoints have none).
-  if (settings_.scheme == TimeScheme::Split) bytes.push_back(static_cast<char>(splitStep_ % 2));
+  if (sweeps(settings_.scheme)) bytes.push_back(static_cast<char>(splitStep_ % 2));
   return bytes;
 }
 
@@ -356,7 +367,7 @@ void FlowSolver::restoreState(const std::vector<char>& bytes, double time) {
                                  &slopeSpeed_.raw(), &bedSlope_.raw()});
   std::size_t total = 0;
   for (const compute::RawBuffer* f : fields) total += f->bytes();
-  const bool split = settings_.scheme == TimeScheme::Split;
+  const bool split = sweeps(settings_.scheme);
   if (split) total += 1;
   if (bytes.size() != total)
     throw InputError("checkpoint state has " + std::to_string(bytes.size()) +

@@ -348,13 +348,13 @@ Scene loadScene(const io::RunConfig& cfg) {
   f.riemann = flow::parseRiemann(cfg.choice("Riemann Solver"));
   f.cfl = cfg.real("CFL");
   f.scheme = flow::parseTimeScheme(cfg.choice("Time Scheme"));
-  if (f.twoPhase && f.scheme == flow::TimeScheme::Split)
-    throw InputError(cfg.origin("Time Scheme") + ": key 'Time Scheme': 'split' is for water-only runs; this run "
-                     "has solids (the two-phase model runs unsplit)");
-  if (f.cfl > flow::kPositiveCfl && f.scheme != flow::TimeScheme::Split) {
+  if (f.twoPhase && flow::sweeps(f.scheme))
+    throw InputError(cfg.origin("Time Scheme") + ": key 'Time Scheme': '" + cfg.choice("Time Scheme") +
+                     "' is for water-only runs; this run has solids (the two-phase model runs unsplit)");
+  if (f.cfl > flow::kPositiveCfl && !flow::sweeps(f.scheme)) {
     std::ostringstream o;
     o << cfg.origin("CFL") << ": key 'CFL': " << f.cfl << " is above 0.5, where the unsplit scheme is no longer "
-      << "positive; Courant numbers up to 1 need Time Scheme=split (water only)";
+      << "positive; Courant numbers up to 1 need Time Scheme=split or hancock (water only)";
     throw InputError(o.str());
   }
   f.hDry = cfg.real("Minimum Flow Height");

@@ -62,6 +62,20 @@ double bernoulliJump(double h, double un, std::pair<double, double> face, double
   return c;
 }
 
+// The discharges that the hydrostatic face between a minus side (h, eta, un, g) and a plus side
+// passes from each side (kernels/flow/hancock.cl, hancock_passing_discharge): each side's state at
+// the face bed z* = min(max(z_l, z_r), min(head_l, head_r)) times its velocity, the side's own
+// where it lies above z*.
+std::pair<double, double> passingDischarge(double hl, double el, double ul, double gl, double hr, double er, double ur,
+                                           double gr) {
+  const double zl = el - hl, zr = er - hr;
+  const double wl = approachSpeed(hl, ul, 1.0, gl), wr = approachSpeed(hr, ur, -1.0, gr);
+  const double bedFace = std::min(std::max(zl, zr), std::min(el + wl * wl / (2.0 * gl), er + wr * wr / (2.0 * gr)));
+  const auto sl = bedFace >= zl ? bernoulliState(hl, el, ul, 1.0, gl, bedFace) : std::make_pair(hl, ul);
+  const auto sr = bedFace >= zr ? bernoulliState(hr, er, ur, -1.0, gr, bedFace) : std::make_pair(hr, ur);
+  return {sl.first * sl.second, sr.first * sr.second};
+}
+
 }  // namespace
 
 CpuFlowReference::CpuFlowReference(const Grid& grid, const flow::FlowSettings& settings,
@@ -123,6 +137,11 @@ CpuFlowReference::Prim CpuFlowReference::prim(const State& s, int i, int j, int 
 }
 
 CpuFlowReference::Faces CpuFlowReference::reconstruct(const State& s, int i, int j, int dir) const {
+  const Faces f = muscl(s, i, j, dir);
+  return settings_.scheme == flow::TimeScheme::Hancock ? predict(s, f, i, j, dir) : f;
+}
+
+CpuFlowReference::Faces CpuFlowReference::muscl(const State& s, int i, int j, int dir) const {
   const int di = dir == 0 ? 1 : 0, dj = 1 - di;
   const Prim c = prim(s, i, j, dir);
   // The surface with the limiter over a minmod bed (flow_common.cl, reconstruct_surface), the bed
@@ -137,7 +156,13 @@ CpuFlowReference::Faces CpuFlowReference::reconstruct(const State& s, int i, int
     const Prim m = prim(s, i - di, j - dj, dir), p = prim(s, i + di, j + dj, dir);
     const double a = (c.eta - c.h) - (m.eta - m.h), b = (p.eta - p.h) - (c.eta - c.h);
     const double db = a * b <= 0.0 ? 0.0 : (std::fabs(a) < std::fabs(b) ? a : b);
-    const double se = limiter(c.eta - m.eta, p.eta - c.eta);
+    double de_m = c.eta - m.eta, de_p = p.eta - c.eta;
+    if (settings_.scheme == flow::TimeScheme::Hancock) {
+      // An empty neighbour whose bed stands above the surface is a wall (flow_common.cl, HANCOCK).
+      if (m.h <= 0.0 && m.eta > c.eta) de_m = 0.0;
+      if (p.h <= 0.0 && p.eta > c.eta) de_p = 0.0;
+    }
+    const double se = limiter(de_m, de_p);
     const double hmax = std::max({m.h, c.h, p.h}), hmin = std::min({m.h, c.h, p.h});
     // |thickness slope| <= room: within [hmin, hmax], or within the thickness slope of the surface
     // and the bed limited alike if that is larger; never beyond positivity (2h)
@@ -168,6 +193,36 @@ CpuFlowReference::Faces CpuFlowReference::reconstruct(const State& s, int i, int
   if (f.hLo <= settings_.hDry) f.etaLo -= f.hLo, f.hLo = 0.0;
   if (f.hHi <= settings_.hDry) f.etaHi -= f.hHi, f.hHi = 0.0;
   return f;
+}
+
+// MUSCL-Hancock predictor (van Leer 1984; Toro 2009, sec. 14.4), from the formulas of
+// kernels/flow/hancock.cl: both faces advance by half a step, r = dt / (2 dx), u_bar = (u_lo + u_hi)/2,
+// dh = r (q_lo - q_hi) with q the discharge each face passes (passingDischarge, from the
+// neighbours' MUSCL faces; the face's own h u next to outside cells and at empty faces), cut to
+// empty the thinner face at most, du = -r [u_bar (u_hi - u_lo) + g (eta_hi - eta_lo)],
+// dv = -r u_bar (v_hi - v_lo); a face at or below h_dry is dry (no thickness, no velocity).
+CpuFlowReference::Faces CpuFlowReference::predict(const State& s, const Faces& f, int i, int j, int dir) const {
+  const int di = dir == 0 ? 1 : 0, dj = 1 - di;
+  const double r = predictorRatio_, g = gp_[grid_.index(i, j)];
+  double qLo = f.hLo * f.unLo, qHi = f.hHi * f.unHi;
+  if (inside(i - di, j - dj) && f.hLo > 0.0) {
+    const Faces m = muscl(s, i - di, j - dj, dir);
+    qLo = passingDischarge(m.hHi, m.etaHi, m.unHi, gp_[grid_.index(i - di, j - dj)], f.hLo, f.etaLo, f.unLo, g).second;
+  }
+  if (inside(i + di, j + dj) && f.hHi > 0.0) {
+    const Faces p = muscl(s, i + di, j + dj, dir);
+    qHi = passingDischarge(f.hHi, f.etaHi, f.unHi, g, p.hLo, p.etaLo, p.unLo, gp_[grid_.index(i + di, j + dj)]).first;
+  }
+  const double dh = std::max(r * (qLo - qHi), -std::min(f.hLo, f.hHi));
+  const double ubar = 0.5 * (f.unLo + f.unHi);
+  const double du = -r * (ubar * (f.unHi - f.unLo) + g * (f.etaHi - f.etaLo));
+  const double dv = -r * ubar * (f.utHi - f.utLo);
+  Faces p{f.hLo + dh, f.hHi + dh, f.etaLo + dh, f.etaHi + dh, f.unLo + du, f.unHi + du, f.utLo + dv, f.utHi + dv};
+  if (!(p.hLo > settings_.hDry)) p.unLo = 0.0, p.utLo = 0.0;
+  if (!(p.hHi > settings_.hDry)) p.unHi = 0.0, p.utHi = 0.0;
+  if (p.hLo <= settings_.hDry) p.etaLo -= p.hLo, p.hLo = 0.0;
+  if (p.hHi <= settings_.hDry) p.etaHi -= p.hHi, p.hHi = 0.0;
+  return p;
 }
 
 // HLL (Harten, Lax & van Leer 1983) / HLLC (Toro 2001, ch. 10) with Toro's two-rarefaction wave
@@ -307,7 +362,7 @@ double CpuFlowReference::rkStage(const State& s, const State* base, double dt, S
       for (int i = 0; i < nx; ++i) fy[j * nx + i] = faceFlux(s, i, j, 1);
 
   const double r = dt / grid_.dx;
-  if (settings_.scheme == flow::TimeScheme::Split) {
+  if (flow::sweeps(settings_.scheme)) {
     // Draining time (Bollermann et al. 2011), in the split sweeps at every Courant number (the
     // kernel's split build, DRAINING = SPLIT): a cell whose outgoing mass fluxes would take more than
     // it holds within the stage gives each of them the fraction theta = h / (r O) of the stage in
@@ -423,7 +478,7 @@ void CpuFlowReference::computeDiagnostics(double outflowVolume) {
     // The CFL speed: both directions' (unsplit) or one direction's (split sweeps) wave speed.
     const double c = std::sqrt(kGravity * h) + slope_[k];
     if (h > 0.0)
-      diag_.maxSpeed = std::max(diag_.maxSpeed, settings_.scheme == flow::TimeScheme::Split
+      diag_.maxSpeed = std::max(diag_.maxSpeed, flow::sweeps(settings_.scheme)
                                                     ? std::max(std::fabs(u), std::fabs(v)) + c
                                                     : std::fabs(u) + std::fabs(v) + 2.0 * c);
     diag_.volume += h * area;
@@ -439,8 +494,12 @@ double CpuFlowReference::stableDt() const {
 
 void CpuFlowReference::step(double dt) {
   // Unsplit: one SSP-RK2 over both directions. Split: one per direction, x first on even steps and
-  // y first on odd ones.
-  const bool split = settings_.scheme == flow::TimeScheme::Split;
+  // y first on odd ones. Hancock: the same sweeps, one predictor-corrector stage each.
+  const bool split = flow::sweeps(settings_.scheme);
+  const bool hancock = settings_.scheme == flow::TimeScheme::Hancock;
+  predictorRatio_ = 0.5 * dt / grid_.dx;
+  // Hancock: friction Strang-split around the sweeps (FlowSolver::step), dt/2 before and after.
+  if (hancock) friction(0.5 * dt);
   const int sweeps[2] = {split ? ((splitStep_ % 2 == 0) ? 1 : 2) : 3, split ? ((splitStep_ % 2 == 0) ? 2 : 1) : 0};
   clampedVolume_ = 0.0;
   double outflow = 0.0;
@@ -449,6 +508,12 @@ void CpuFlowReference::step(double dt) {
     const State u0{h_, qx_, qy_};
     State u1, u2;
     double added1 = 0.0, added2 = 0.0;
+    if (hancock) {
+      outflow += dt * rkStage(u0, nullptr, dt, u1, added1, dirs) * grid_.dx;
+      clampedVolume_ += added1;
+      h_ = u1.h, qx_ = u1.qx, qy_ = u1.qy;
+      continue;
+    }
     const double out1 = rkStage(u0, nullptr, dt, u1, added1, dirs);
     const double out2 = rkStage(u1, &u0, dt, u2, added2, dirs);
     // A negative stage-1 value is clamped before the RK average, which then counts it half.
@@ -458,7 +523,7 @@ void CpuFlowReference::step(double dt) {
     outflow += 0.5 * dt * (out1 + out2) * grid_.dx;
   }
   if (split) ++splitStep_;
-  friction(dt);
+  friction(hancock ? 0.5 * dt : dt);
   time_ += dt;
   track();
   computeDiagnostics(outflow);

@@ -6,7 +6,9 @@
 //   U1 = U0 + dt L(U0)                      (then the dry-cell rule)
 //   U  = U0 / 2 + (U1 + dt L(U1)) / 2       (SSP-RK2, Shu & Osher 1988; then the dry-cell rule)
 //   (split scheme: the same per direction, L with that direction's faces only, x first on even
-//   steps; each stage limits the fluxes out of draining cells, see rkStage)
+//   steps; each stage limits the fluxes out of draining cells, see rkStage; Hancock scheme: those
+//   sweeps with one stage U = U0 + dt L(U0) each, L from the faces advanced by the predictor, and
+//   friction over dt/2 before the sweeps and dt/2 after them)
 //   semi-implicit Manning friction, time += dt, running maxima / arrival, diagnostics.
 // L(U) is the finite-volume residual: MUSCL reconstruction of h, eta = h + b, u, v (limited slopes,
 // zero next to outside cells), hydrostatic reconstruction (Audusse et al. 2004), an HLL or HLLC
@@ -81,7 +83,11 @@ class CpuFlowReference {
   double velocity(double h, double q) const;
   double limiter(double backward, double forward) const;
   Prim prim(const State& s, int i, int j, int dir) const;
+  /// The face values the fluxes use: the MUSCL ones, advanced by the predictor under Hancock.
   Faces reconstruct(const State& s, int i, int j, int dir) const;
+  Faces muscl(const State& s, int i, int j, int dir) const;
+  /// The MUSCL-Hancock predictor of the faces f of cell (i, j) (Time Scheme=hancock).
+  Faces predict(const State& s, const Faces& f, int i, int j, int dir) const;
   FaceFlux riemann(double hl, double ul, double vl, double hr, double ur, double vr, double g) const;
   FaceFlux faceFlux(const State& s, int i, int j, int dir) const;
   /// out = base/2 + (s + dt L(s))/2 when base is given, else s + dt L(s); returns the outward
@@ -103,6 +109,7 @@ class CpuFlowReference {
   double time_ = 0;
   double clampedVolume_ = 0;
   int splitStep_ = 0;              // sweeps' order: x first on even steps (FlowSolver::step)
+  double predictorRatio_ = 0;      // dt / (2 dx) of the current step (Hancock predictor)
   mutable int drainedCells_ = 0;   // cell-stages whose outflow the draining time limited
   flow::FlowDiagnostics diag_;
 };

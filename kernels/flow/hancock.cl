@@ -1,0 +1,64 @@
+// The predictor of the MUSCL-Hancock scheme (Time Scheme=hancock; van Leer 1984, SIAM J. Sci. Stat.
+// Comput. 5, 1; Toro 2009, Riemann Solvers and Numerical Methods for Fluid Dynamics, sec. 14.4): both
+// face states of a cell advance by half a step, so that the fluxes of the single corrector stage are
+// centred in time (second order in space and time with one flux evaluation per sweep, against the
+// two of SSP-RK2). Near Courant number 1 it is much less dissipative than SSP-RK2 with the same
+// reconstruction: on a steep slope, roll waves keep their crests at 20 cells per wavelength
+// (tests/verification/test_roll_waves.cpp, docs/numerics.md "Roll waves").
+//
+// In primitive variables along the sweep (Toro 2009, eq. 14.40, the quasi-linear form), with
+// r = dt / (2 dx), u_bar = (u_lo + u_hi) / 2 the cell's normal velocity and v the tangential one:
+//   dh = r (q_lo - q_hi)                (q: the discharge each face passes, hancock_passing_discharge),
+//   du = -r [u_bar (u_hi - u_lo) + g (eta_hi - eta_lo)]    (advection, pressure and bed slope),
+//   dv = -r u_bar (v_hi - v_lo).
+// The pressure and the bed slope enter as one surface difference: a lake at rest (flat face
+// surfaces, no velocity) is left exactly as it is, so the scheme stays well-balanced bit for bit;
+// and no face velocity is a momentum divided by a thin face's thickness. Where dh would empty the
+// thinner face it is cut to leave that face at zero (positivity of the predicted states; the
+// corrector is positive by the split sweeps' draining time, stage.cl); a face left at or below
+// h_dry has no velocity. A first-order cell (equal face values) is left unchanged.
+// Friction is not in the predictor: the step is Strang-split, friction over dt/2 before and after
+// it (FlowSolver::step). With friction in the predictor as well, a sheet on a rough slope was
+// slowed twice (its 5 m map 0.39 from the 1.25 m one, 0.31 without) and the linear roll waves
+// travelled 2 % slow.
+#ifndef TALUS_FLOW_HANCOCK_CL
+#define TALUS_FLOW_HANCOCK_CL
+#include "flow/riemann.cl"
+
+/// The discharges (normal, per unit width) that the corrector's hydrostatic face between the minus
+/// side m and the plus side p passes from each side: the state each side has at the face bed z*
+/// (hydrostatic_sides, riemann.cl) times its velocity. At a rise only the part of the column above
+/// z* reaches the face at rest (Audusse's h* u); a supercritical approach passes its whole
+/// discharge (bernoulli_state keeps it); a side above z* keeps its own. The predictor's mass flux
+/// through a face is this discharge, not the face's h u: no mass leaves a cell through the part of a
+/// face that lies below its neighbour's bed. With h u the predictor thinned a face that the water
+/// presses against a rise, so its hydrostatic push (h^2 - h*^2)/2 fell while the momentum into it
+/// grew; a lake at rest among dry islands over a rough bed grew round-off into 0.3 m/s
+/// (tools/validation/hancock_lake_1d.py, variant (a); docs/numerics.md).
+INLINE real2 hancock_passing_discharge(Side m, Side p) {
+  const HydrostaticFace f = hydrostatic_sides(m, p);
+  return (real2)(f.sm.x * f.sm.y, f.sp.x * f.sp.y);
+}
+
+/// The predictor with the passing discharges q_lo, q_hi of the cell's two faces (see above).
+INLINE CellFaces hancock_predict(CellFaces f, real q_lo, real q_hi, real g, real r, real h_dry) {
+  real dh = r * (q_lo - q_hi);
+  const real ubar = (real)0.5 * (f.un_lo + f.un_hi);
+  const real du = -r * (ubar * (f.un_hi - f.un_lo) + g * (f.e_hi - f.e_lo));
+  const real dv = -r * ubar * (f.ut_hi - f.ut_lo);
+  const real thinner = fmin(f.h_lo, f.h_hi);
+  if (thinner + dh < (real)0) dh = -thinner;
+  CellFaces o;
+  o.h_lo = f.h_lo + dh;
+  o.h_hi = f.h_hi + dh;
+  o.e_lo = f.e_lo + dh;
+  o.e_hi = f.e_hi + dh;
+  const int wet_lo = o.h_lo > h_dry, wet_hi = o.h_hi > h_dry;
+  o.un_lo = wet_lo ? f.un_lo + du : (real)0;
+  o.un_hi = wet_hi ? f.un_hi + du : (real)0;
+  o.ut_lo = wet_lo ? f.ut_lo + dv : (real)0;
+  o.ut_hi = wet_hi ? f.ut_hi + dv : (real)0;
+  return o;
+}
+
+#endif
