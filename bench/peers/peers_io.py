@@ -189,3 +189,13 @@ def run_talus(runfile, out_dir, sets=()):
     for kv in sets:
         cmd += ["--set", kv]
     subprocess.run(cmd, check=True, env=dict(os.environ, POCL_MAX_PTHREAD_COUNT="1"))
+
+
+def talus_variant(spec):
+    """Run-file keys of a Talus variant named `limiter` or `limiter@scheme` (scheme: split or
+    hancock, both at Courant number 0.9; e.g. mc@hancock), for the scripts' --limiters lists."""
+    limiter, _, scheme = spec.partition("@")
+    keys = ["Limiter=" + limiter]
+    if scheme:
+        keys += ["Time Scheme=" + scheme, "CFL=0.9"]
+    return keys

@@ -36,6 +36,9 @@ TALUS_CONFIGS = {
     "float_sc0_split":       ["Precision=float", "Slope Correction=0", "Time Scheme=split"],
     "float_sc0_split_cfl09": ["Precision=float", "Slope Correction=0", "Time Scheme=split", "CFL=0.9"],
     "float_split_cfl09":     ["Precision=float", "Time Scheme=split", "CFL=0.9"],
+    # the split sweeps as one MUSCL-Hancock stage each (kernels/flow/hancock.cl), at 0.9
+    "float_sc0_hancock_cfl09": ["Precision=float", "Slope Correction=0", "Time Scheme=hancock", "CFL=0.9"],
+    "float_hancock_cfl09":     ["Precision=float", "Time Scheme=hancock", "CFL=0.9"],
 }
 GRID_TALUS_CONFIG = os.environ.get("PEERS_GRID_TALUS_CONFIG", "float_sc0")
 
@@ -226,7 +229,8 @@ def cmd_kot(args):
     work = os.path.abspath(args.work)
     runfile = os.path.join(work, "grids", "r5", "talus.run")
     tj = []
-    configs = ["float", "double", "float_sc0", "double_sc0", "float_sc0_split", "float_sc0_split_cfl09"]
+    configs = ["float", "double", "float_sc0", "double_sc0", "float_sc0_split", "float_sc0_split_cfl09",
+               "float_sc0_hancock_cfl09"]
     for c in configs:
         tj.append(talus_job(work, "kot_r5", c, 1, runfile))
     for c in ["float", "double"]:
@@ -258,7 +262,8 @@ def cmd_ritter(args):
         print(f"ritter {name}", flush=True)
         run_rounds(work, [talus_job(work, "ritter_" + name, "float", 1, runfile),
                           talus_job(work, "ritter_" + name, "double", 1, runfile),
-                          talus_job(work, "ritter_" + name, "float_split_cfl09", 1, runfile)],
+                          talus_job(work, "ritter_" + name, "float_split_cfl09", 1, runfile),
+                          talus_job(work, "ritter_" + name, "float_hancock_cfl09", 1, runfile)],
                    [geoclaw_job(work, "ritter_" + name, 1), geoclaw_job(work, "ritter_" + name, 1, dry1e3=True)],
                    args.reps)
 

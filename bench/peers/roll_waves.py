@@ -53,8 +53,8 @@ def build(work, dx, t_end):
 
 
 def run_talus(d, limiter):
-    out = os.path.join(d, "talus_" + limiter)
-    peers_io.run_talus(os.path.join(d, "talus.run"), out, ["Limiter=" + limiter])
+    out = os.path.join(d, "talus_" + limiter.replace("@", "_"))
+    peers_io.run_talus(os.path.join(d, "talus.run"), out, peers_io.talus_variant(limiter))
     return np.nan_to_num(gc.read_raster(os.path.join(out, "hffinal.tif")).values)[ROWS // 2]
 
 
@@ -75,7 +75,7 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("work")
     ap.add_argument("--cells", default="5,2.5,1.25,0.625")
-    ap.add_argument("--talus-limiters", default="mc,vanleer")
+    ap.add_argument("--talus-limiters", default="mc,vanleer,mc@hancock")
     ap.add_argument("--t", type=float, default=40.0)
     a = ap.parse_args()
     work = os.path.join(os.path.abspath(a.work), "roll_waves")

@@ -58,8 +58,8 @@ def build(work, amp, t_end):
 
 
 def run_talus(d, limiter):
-    out = os.path.join(d, "talus_" + limiter)
-    peers_io.run_talus(os.path.join(d, "talus.run"), out, ["Limiter=" + limiter])
+    out = os.path.join(d, "talus_" + limiter.replace("@", "_"))
+    peers_io.run_talus(os.path.join(d, "talus.run"), out, peers_io.talus_variant(limiter))
     return np.nan_to_num(gc.read_raster(os.path.join(out, "hffinal.tif")).values)
 
 
@@ -73,7 +73,7 @@ def main():
     ap.add_argument("work")
     ap.add_argument("--amp", type=float, default=0.5)
     ap.add_argument("--t", type=float, default=30.0)
-    ap.add_argument("--limiters", default="mc,vanleer,minmod")
+    ap.add_argument("--limiters", default="mc,vanleer,minmod,mc@hancock,minmod@hancock")
     a = ap.parse_args()
     work = os.path.join(os.path.abspath(a.work), "rough_slope")
     dirs = build(work, a.amp, a.t)

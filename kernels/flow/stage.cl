@@ -49,7 +49,7 @@
 // The split sweeps (-DSPLIT=1) always limit draining cells; the unsplit stage never does.
 #define DRAINING SPLIT
 #if DRAINING && HANCOCK
-#define HALO 4    // the predictor's passing discharges need the neighbours' MUSCL faces (local_faces)
+#define HALO 4    // the predictor's view of the faces needs the neighbours' MUSCL faces (local_faces)
 #define RING 1
 #define FACE_SLOTS 1
 #elif DRAINING
@@ -95,9 +95,9 @@ INLINE CellFaces muscl_faces(__local const real* lh, __local const real* le, __l
 }
 
 /// The face values the stage's fluxes use: the MUSCL ones, in the MUSCL-Hancock build advanced by
-/// half a step (flow/hancock.cl; r = dt / (2 dx), the cell's g_p). The predictor's mass fluxes are
-/// the discharges that the corrector's faces pass (hancock_passing_discharge), from the neighbours'
-/// MUSCL faces (two cells further than the stencil of muscl_faces: HALO 4).
+/// half a step (flow/hancock.cl; r = dt / (2 dx), the cell's g_p). The predictor sees each face as
+/// the corrector will (hancock_face: the discharge it passes, the drop it pushes down), from the
+/// neighbours' MUSCL faces (two cells further than the stencil of muscl_faces: HALO 4).
 INLINE CellFaces local_faces(__local const real* lh, __local const real* le, __local const real* lu,
                              __local const real* lv, __local const real* lg, __local const uchar* lin, int a, int b,
                              int dir, real r, real h_dry) {
@@ -106,16 +106,20 @@ INLINE CellFaces local_faces(__local const real* lh, __local const real* le, __l
   const int da = dir == 0, db = dir == 1;
   const int m_in = lin[(b - db) * SPAN + a - da], p_in = lin[(b + db) * SPAN + a + da];
   const real g = lg[b * SPAN + a];
-  real q_lo = f.h_lo * f.un_lo, q_hi = f.h_hi * f.un_hi;
+  real q_lo = f.h_lo * f.un_lo, q_hi = f.h_hi * f.un_hi, drop_lo = 0, drop_hi = 0;
   if (m_in && f.h_lo > (real)0) {
     const CellFaces fm = muscl_faces(lh, le, lu, lv, lin, a - da, b - db, dir, h_dry);
-    q_lo = hancock_passing_discharge(side_hi(fm, lg[(b - db) * SPAN + a - da]), side_lo(f, g)).y;
+    const PredictorFace pf = hancock_face(side_hi(fm, lg[(b - db) * SPAN + a - da]), side_lo(f, g));
+    q_lo = pf.q_p;
+    drop_lo = pf.drop_p;
   }
   if (p_in && f.h_hi > (real)0) {
     const CellFaces fp = muscl_faces(lh, le, lu, lv, lin, a + da, b + db, dir, h_dry);
-    q_hi = hancock_passing_discharge(side_hi(f, g), side_lo(fp, lg[(b + db) * SPAN + a + da])).x;
+    const PredictorFace pf = hancock_face(side_hi(f, g), side_lo(fp, lg[(b + db) * SPAN + a + da]));
+    q_hi = pf.q_m;
+    drop_hi = pf.drop_m;
   }
-  return dry_faces(hancock_predict(f, q_lo, q_hi, g, r, h_dry), h_dry);
+  return dry_faces(hancock_predict(f, q_lo, q_hi, drop_lo, drop_hi, g, r, h_dry), h_dry);
 #else
   (void)lg;
   (void)r;

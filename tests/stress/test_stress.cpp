@@ -15,7 +15,8 @@
 //   TALUS_STRESS_DUMP=1         a failing two-phase scene prints every cell (bed, initial and current state)
 //   TALUS_STRESS_SCHEME=split   run the single-phase scenes with the dimensionally split time scheme
 //                               (TEST(Stress, SplitScheme) does so for the CI subset of every family);
-//                               =split-draining: the same at twice the scene's CFL (up to 1)
+//                               =split-draining: the same at twice the scene's CFL (up to 1);
+//                               =hancock: the MUSCL-Hancock sweeps at twice the scene's CFL
 // e.g. a long soak: TALUS_STRESS_SCENES=2000 build/tests/talus_stress_tests
 //
 // The summary at the end of the process prints the scenes run, total steps, failures and the worst
@@ -130,8 +131,10 @@ tt::StressScene sceneOf(uint64_t seed, std::string scheme = "") {
   if (!scheme.empty()) {
     // "split-draining": the split sweeps at twice the scene's CFL (0.1 to 1), above 1/2 positive only
     // by the draining-time limiter of kernels/flow/stage.cl.
-    const bool draining = scheme == "split-draining";
-    scene.settings.scheme = talus::flow::parseTimeScheme(draining ? "split" : scheme);
+    // "hancock": the one-stage MUSCL-Hancock sweeps, also at twice the scene's CFL (they are meant
+    // for Courant numbers near 1, kernels/flow/hancock.cl).
+    const bool draining = scheme == "split-draining" || scheme == "hancock";
+    scene.settings.scheme = talus::flow::parseTimeScheme(scheme == "split-draining" ? "split" : scheme);
     if (draining) scene.settings.cfl *= 2;
     scene.description += ", time scheme " + scheme + (draining ? " (cfl doubled)" : "") +
                          " (TALUS_STRESS_SCHEME=" + scheme + ")";
@@ -236,6 +239,13 @@ TEST(Stress, SplitSchemeAtTwiceTheCourantNumber) {
   if (envSet("TALUS_STRESS_SEED") || envSet("TALUS_STRESS_DEBRIS_SEED"))
     GTEST_SKIP() << "one seeded scene only (TALUS_STRESS_SCHEME=split-draining runs it so)";
   for (int f = 0; f < tt::kStressFamilies; ++f) runFamily(static_cast<StressFamily>(f), "split-draining");
+}
+
+// The one-stage MUSCL-Hancock sweeps at twice the scene's Courant number (TALUS_STRESS_SCHEME=hancock).
+TEST(Stress, HancockScheme) {
+  if (envSet("TALUS_STRESS_SEED") || envSet("TALUS_STRESS_DEBRIS_SEED"))
+    GTEST_SKIP() << "one seeded scene only (TALUS_STRESS_SCHEME=hancock runs it so)";
+  for (int f = 0; f < tt::kStressFamilies; ++f) runFamily(static_cast<StressFamily>(f), "hancock");
 }
 
 // Two-phase (solids + fluid) scenes, tests/support/StressScenes.hpp makeDebrisScene. They have a

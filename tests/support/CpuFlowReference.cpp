@@ -62,18 +62,20 @@ double bernoulliJump(double h, double un, std::pair<double, double> face, double
   return c;
 }
 
-// The discharges that the hydrostatic face between a minus side (h, eta, un, g) and a plus side
-// passes from each side (kernels/flow/hancock.cl, hancock_passing_discharge): each side's state at
-// the face bed z* = min(max(z_l, z_r), min(head_l, head_r)) times its velocity, the side's own
-// where it lies above z*.
-std::pair<double, double> passingDischarge(double hl, double el, double ul, double gl, double hr, double er, double ur,
-                                           double gr) {
+// What the hydrostatic face between a minus side (h, eta, un, g) and a plus side does to each side
+// (kernels/flow/hancock.cl, hancock_face): the discharge it passes from each (the side's state at
+// the face bed z* = min(max(z_l, z_r), min(head_l, head_r)) times its velocity, the side's own where
+// it lies above z*), and how far each side's face bed lies above z* (the drop it is pushed down).
+struct PredictorFace {
+  double qMinus, qPlus, dropMinus, dropPlus;
+};
+PredictorFace predictorFace(double hl, double el, double ul, double gl, double hr, double er, double ur, double gr) {
   const double zl = el - hl, zr = er - hr;
   const double wl = approachSpeed(hl, ul, 1.0, gl), wr = approachSpeed(hr, ur, -1.0, gr);
   const double bedFace = std::min(std::max(zl, zr), std::min(el + wl * wl / (2.0 * gl), er + wr * wr / (2.0 * gr)));
   const auto sl = bedFace >= zl ? bernoulliState(hl, el, ul, 1.0, gl, bedFace) : std::make_pair(hl, ul);
   const auto sr = bedFace >= zr ? bernoulliState(hr, er, ur, -1.0, gr, bedFace) : std::make_pair(hr, ur);
-  return {sl.first * sl.second, sr.first * sr.second};
+  return {sl.first * sl.second, sr.first * sr.second, std::max(0.0, zl - bedFace), std::max(0.0, zr - bedFace)};
 }
 
 }  // namespace
@@ -197,25 +199,30 @@ CpuFlowReference::Faces CpuFlowReference::muscl(const State& s, int i, int j, in
 
 // MUSCL-Hancock predictor (van Leer 1984; Toro 2009, sec. 14.4), from the formulas of
 // kernels/flow/hancock.cl: both faces advance by half a step, r = dt / (2 dx), u_bar = (u_lo + u_hi)/2,
-// dh = r (q_lo - q_hi) with q the discharge each face passes (passingDischarge, from the
+// dh = r (q_lo - q_hi) with q the discharge each face passes (predictorFace, from the
 // neighbours' MUSCL faces; the face's own h u next to outside cells and at empty faces), cut to
-// empty the thinner face at most, du = -r [u_bar (u_hi - u_lo) + g (eta_hi - eta_lo)],
+// empty the thinner face at most, du = -r [u_bar (u_hi - u_lo) + g ((eta_hi - drop_hi) -
+// (eta_lo - drop_lo))] with each face's drop,
 // dv = -r u_bar (v_hi - v_lo); a face at or below h_dry is dry (no thickness, no velocity).
 CpuFlowReference::Faces CpuFlowReference::predict(const State& s, const Faces& f, int i, int j, int dir) const {
   const int di = dir == 0 ? 1 : 0, dj = 1 - di;
   const double r = predictorRatio_, g = gp_[grid_.index(i, j)];
-  double qLo = f.hLo * f.unLo, qHi = f.hHi * f.unHi;
+  double qLo = f.hLo * f.unLo, qHi = f.hHi * f.unHi, dropLo = 0.0, dropHi = 0.0;
   if (inside(i - di, j - dj) && f.hLo > 0.0) {
     const Faces m = muscl(s, i - di, j - dj, dir);
-    qLo = passingDischarge(m.hHi, m.etaHi, m.unHi, gp_[grid_.index(i - di, j - dj)], f.hLo, f.etaLo, f.unLo, g).second;
+    const PredictorFace pf =
+        predictorFace(m.hHi, m.etaHi, m.unHi, gp_[grid_.index(i - di, j - dj)], f.hLo, f.etaLo, f.unLo, g);
+    qLo = pf.qPlus, dropLo = pf.dropPlus;
   }
   if (inside(i + di, j + dj) && f.hHi > 0.0) {
     const Faces p = muscl(s, i + di, j + dj, dir);
-    qHi = passingDischarge(f.hHi, f.etaHi, f.unHi, g, p.hLo, p.etaLo, p.unLo, gp_[grid_.index(i + di, j + dj)]).first;
+    const PredictorFace pf =
+        predictorFace(f.hHi, f.etaHi, f.unHi, g, p.hLo, p.etaLo, p.unLo, gp_[grid_.index(i + di, j + dj)]);
+    qHi = pf.qMinus, dropHi = pf.dropMinus;
   }
   const double dh = std::max(r * (qLo - qHi), -std::min(f.hLo, f.hHi));
   const double ubar = 0.5 * (f.unLo + f.unHi);
-  const double du = -r * (ubar * (f.unHi - f.unLo) + g * (f.etaHi - f.etaLo));
+  const double du = -r * (ubar * (f.unHi - f.unLo) + g * ((f.etaHi - dropHi) - (f.etaLo - dropLo)));
   const double dv = -r * ubar * (f.utHi - f.utLo);
   Faces p{f.hLo + dh, f.hHi + dh, f.etaLo + dh, f.etaHi + dh, f.unLo + du, f.unHi + du, f.utLo + dv, f.utHi + dv};
   if (!(p.hLo > settings_.hDry)) p.unLo = 0.0, p.utLo = 0.0;

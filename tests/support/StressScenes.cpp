@@ -646,7 +646,7 @@ StressOutcome runStressScene(const StressScene& scene) {
   for (std::size_t k = 0; k < g.cells(); ++k)
     if (scene.input.mask[k]) bedMin = std::min(bedMin, bed[k]);
   const double hDry = dbl ? s.hDry : static_cast<double>(static_cast<float>(s.hDry));
-  const Frame frame{g, scene.input.mask, bed, gp, sg.gp, sg.gn, bedMin, hDry, s.scheme == flow::TimeScheme::Split};
+  const Frame frame{g, scene.input.mask, bed, gp, sg.gp, sg.gn, bedMin, hDry, flow::sweeps(s.scheme)};
 
   std::vector<double> h = solver.h(), qx = solver.qx(), qy = solver.qy();
   const Totals t0 = totals(frame, h, qx, qy);
