@@ -74,6 +74,7 @@ def main():
     ap.add_argument("--amp", type=float, default=0.5)
     ap.add_argument("--t", type=float, default=30.0)
     ap.add_argument("--limiters", default="mc,vanleer,minmod,mc@hancock,minmod@hancock")
+    ap.add_argument("--no-geoclaw", action="store_true", help="Talus only (a variant's kernels, TALUS_KERNEL_DIR)")
     a = ap.parse_args()
     work = os.path.join(os.path.abspath(a.work), "rough_slope")
     dirs = build(work, a.amp, a.t)
@@ -85,7 +86,8 @@ def main():
     emit("| code | cells m | volume left m3 | area > 1 cm m2 | centre of mass along the slope m | distance to own 1.25 m |")
     emit("|---|---|---|---|---|---|")
     codes = [("Talus " + lim, lambda d, nx, ny, dx, lim=lim: run_talus(d, lim)) for lim in a.limiters.split(",")]
-    codes.append(("GeoClaw", lambda d, nx, ny, dx: run_geoclaw(d, nx, ny, dx)))
+    if not a.no_geoclaw:
+        codes.append(("GeoClaw", lambda d, nx, ny, dx: run_geoclaw(d, nx, ny, dx)))
     for code, runner in codes:
         maps = {name: runner(d, nx, ny, dx) for name, (d, f, nx, ny, dx) in dirs.items()}
         ref = maps["1.25"]

@@ -8,7 +8,7 @@
 //
 // In primitive variables along the sweep (Toro 2009, eq. 14.40, the quasi-linear form), with
 // r = dt / (2 dx), u_bar = (u_lo + u_hi) / 2 the cell's normal velocity and v the tangential one:
-//   dh = r (q_lo - q_hi)                (q: the discharge each face passes, hancock_face),
+//   dh = r (q_lo - q_hi)                (q: the corrector's mass flux of each face, hancock_face),
 //   du = -r [u_bar (u_hi - u_lo) + g (eta_hi - eta_lo)]    (advection, pressure and bed slope; each
 //                                                            face surface less its drop, hancock_face),
 //   dv = -r u_bar (v_hi - v_lo).
@@ -27,16 +27,17 @@
 #include "flow/riemann.cl"
 
 /// What the corrector's hydrostatic face between the minus side m and the plus side p does to each
-/// side, as the predictor needs it (from the unpredicted face values; hydrostatic_sides, riemann.cl):
-/// - q: the discharge (normal, per unit width) it passes from the side: the side's state at the face
-///   bed z* times its velocity. At a rise only the part of the column above z* reaches the face at
-///   rest (Audusse's h* u); a supercritical approach passes its whole discharge (bernoulli_state
-///   keeps it); a side above z* keeps its own. The predictor's mass flux through a face is this
-///   discharge, not the face's h u: no mass leaves a cell through the part of a face that lies below
-///   its neighbour's bed. With h u the predictor thinned a face that the water presses against a
-///   rise, so its hydrostatic push (h^2 - h*^2)/2 fell while the momentum into it grew; a lake at
-///   rest among dry islands over a rough bed grew round-off into 0.2 m/s (tools/validation/
-///   hancock_lake_1d.py, variant (a); docs/numerics.md).
+/// side, as the predictor needs it (from the unpredicted face values; hydrostatic_face, riemann.cl):
+/// - q: the mass flux through the face (per unit width, from m to p): the corrector's own flux,
+///   the hydrostatic reconstruction's Riemann flux, evaluated with the unpredicted states. The
+///   predictor's thickness change is thus a first-order Godunov half-step, which sees the face as
+///   the corrector will: no mass leaves through the part of a face below the neighbour's bed, and
+///   the lake at rest stays exact. Two other forms were measured (docs/numerics.md):
+///   the faces' own h u (Toro's predictor) thinned a face that water presses against a rise, so its
+///   hydrostatic push (h^2 - h*^2)/2 fell while the momentum into it grew: a lake among dry islands
+///   over a rough bed grew round-off into 0.2 m/s (tools/validation/hancock_lake_1d.py); each
+///   side's h* u at z* held that lake but held sheets back at every rise of a rough slope (5 m map
+///   0.49 from the 1.25 m one, against 0.28 for the SSP-RK2 sweeps; this form 0.28).
 /// - drop: how far the side's face bed lies above z* (0 where it does not): the corrector pushes the
 ///   side towards the lower neighbour with Chen & Noelle's h (z* - z) (riemann.cl, face_between),
 ///   the force of a surface lowered by the drop. The predictor takes it as such (e_face - drop in
@@ -46,20 +47,19 @@
 ///   slope gained 4.8 times the energy it released in its first step (stress seed
 ///   14493454552802392858 with the MUSCL-Hancock sweeps).
 typedef struct {
-  real q_m, q_p, drop_m, drop_p;
+  real mass, drop_m, drop_p;
 } PredictorFace;
 
 INLINE PredictorFace hancock_face(Side m, Side p) {
-  const HydrostaticFace f = hydrostatic_sides(m, p);
+  const HydrostaticFace f = hydrostatic_face(m, p);
   PredictorFace o;
-  o.q_m = f.sm.x * f.sm.y;
-  o.q_p = f.sp.x * f.sp.y;
+  o.mass = f.r.fh;
   o.drop_m = fmax((real)0, f.zm - f.bs);
   o.drop_p = fmax((real)0, f.zp - f.bs);
   return o;
 }
 
-/// The predictor with the passing discharges q_lo, q_hi of the cell's two faces and their drops
+/// The predictor with the mass fluxes q_lo, q_hi of the cell's two faces and their drops
 /// (see above).
 INLINE CellFaces hancock_predict(CellFaces f, real q_lo, real q_hi, real drop_lo, real drop_hi, real g, real r,
                                  real h_dry) {

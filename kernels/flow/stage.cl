@@ -96,7 +96,7 @@ INLINE CellFaces muscl_faces(__local const real* lh, __local const real* le, __l
 
 /// The face values the stage's fluxes use: the MUSCL ones, in the MUSCL-Hancock build advanced by
 /// half a step (flow/hancock.cl; r = dt / (2 dx), the cell's g_p). The predictor sees each face as
-/// the corrector will (hancock_face: the discharge it passes, the drop it pushes down), from the
+/// the corrector will (hancock_face: its mass flux, the drop it pushes down), from the
 /// neighbours' MUSCL faces (two cells further than the stencil of muscl_faces: HALO 4).
 INLINE CellFaces local_faces(__local const real* lh, __local const real* le, __local const real* lu,
                              __local const real* lv, __local const real* lg, __local const uchar* lin, int a, int b,
@@ -110,13 +110,13 @@ INLINE CellFaces local_faces(__local const real* lh, __local const real* le, __l
   if (m_in && f.h_lo > (real)0) {
     const CellFaces fm = muscl_faces(lh, le, lu, lv, lin, a - da, b - db, dir, h_dry);
     const PredictorFace pf = hancock_face(side_hi(fm, lg[(b - db) * SPAN + a - da]), side_lo(f, g));
-    q_lo = pf.q_p;
+    q_lo = pf.mass;
     drop_lo = pf.drop_p;
   }
   if (p_in && f.h_hi > (real)0) {
     const CellFaces fp = muscl_faces(lh, le, lu, lv, lin, a + da, b + db, dir, h_dry);
     const PredictorFace pf = hancock_face(side_hi(f, g), side_lo(fp, lg[(b + db) * SPAN + a + da]));
-    q_hi = pf.q_m;
+    q_hi = pf.mass;
     drop_hi = pf.drop_m;
   }
   return dry_faces(hancock_predict(f, q_lo, q_hi, drop_lo, drop_hi, g, r, h_dry), h_dry);

@@ -62,21 +62,6 @@ double bernoulliJump(double h, double un, std::pair<double, double> face, double
   return c;
 }
 
-// What the hydrostatic face between a minus side (h, eta, un, g) and a plus side does to each side
-// (kernels/flow/hancock.cl, hancock_face): the discharge it passes from each (the side's state at
-// the face bed z* = min(max(z_l, z_r), min(head_l, head_r)) times its velocity, the side's own where
-// it lies above z*), and how far each side's face bed lies above z* (the drop it is pushed down).
-struct PredictorFace {
-  double qMinus, qPlus, dropMinus, dropPlus;
-};
-PredictorFace predictorFace(double hl, double el, double ul, double gl, double hr, double er, double ur, double gr) {
-  const double zl = el - hl, zr = er - hr;
-  const double wl = approachSpeed(hl, ul, 1.0, gl), wr = approachSpeed(hr, ur, -1.0, gr);
-  const double bedFace = std::min(std::max(zl, zr), std::min(el + wl * wl / (2.0 * gl), er + wr * wr / (2.0 * gr)));
-  const auto sl = bedFace >= zl ? bernoulliState(hl, el, ul, 1.0, gl, bedFace) : std::make_pair(hl, ul);
-  const auto sr = bedFace >= zr ? bernoulliState(hr, er, ur, -1.0, gr, bedFace) : std::make_pair(hr, ur);
-  return {sl.first * sl.second, sr.first * sr.second, std::max(0.0, zl - bedFace), std::max(0.0, zr - bedFace)};
-}
 
 }  // namespace
 
@@ -160,9 +145,11 @@ CpuFlowReference::Faces CpuFlowReference::muscl(const State& s, int i, int j, in
     const double db = a * b <= 0.0 ? 0.0 : (std::fabs(a) < std::fabs(b) ? a : b);
     double de_m = c.eta - m.eta, de_p = p.eta - c.eta;
     if (settings_.scheme == flow::TimeScheme::Hancock) {
-      // An empty neighbour whose bed stands above the surface is a wall (flow_common.cl, HANCOCK).
-      if (m.h <= 0.0 && m.eta > c.eta) de_m = 0.0;
-      if (p.h <= 0.0 && p.eta > c.eta) de_p = 0.0;
+      // An empty neighbour whose bed stands above the cell's surface plus the kinetic head of its
+      // motion towards it is a wall: difference zero (flow_common.cl, HANCOCK; g = 9.81 there).
+      const double um = std::max(0.0, -c.un), up = std::max(0.0, c.un);
+      if (m.h <= 0.0 && m.eta > c.eta + um * um / (2.0 * 9.81)) de_m = 0.0;
+      if (p.h <= 0.0 && p.eta > c.eta + up * up / (2.0 * 9.81)) de_p = 0.0;
     }
     const double se = limiter(de_m, de_p);
     const double hmax = std::max({m.h, c.h, p.h}), hmin = std::min({m.h, c.h, p.h});
@@ -197,10 +184,26 @@ CpuFlowReference::Faces CpuFlowReference::muscl(const State& s, int i, int j, in
   return f;
 }
 
+// What the hydrostatic face between a minus side (h, eta, un, g) and a plus side does to each side
+// (kernels/flow/hancock.cl, hancock_face): its mass flux (the Riemann flux between the sides'
+// states at the face bed z* = min(max(z_l, z_r), min(head_l, head_r)); a side above z* keeps its
+// own), and how far each side's face bed lies above z* (the drop it is pushed down).
+CpuFlowReference::PredictorFace CpuFlowReference::predictorFace(double hl, double el, double ul, double vl, double gl,
+                                                                double hr, double er, double ur, double vr,
+                                                                double gr) const {
+  const double zl = el - hl, zr = er - hr;
+  const double wl = approachSpeed(hl, ul, 1.0, gl), wr = approachSpeed(hr, ur, -1.0, gr);
+  const double bedFace = std::min(std::max(zl, zr), std::min(el + wl * wl / (2.0 * gl), er + wr * wr / (2.0 * gr)));
+  const auto sl = bedFace >= zl ? bernoulliState(hl, el, ul, 1.0, gl, bedFace) : std::make_pair(hl, ul);
+  const auto sr = bedFace >= zr ? bernoulliState(hr, er, ur, -1.0, gr, bedFace) : std::make_pair(hr, ur);
+  const double mass = riemann(sl.first, sl.second, vl, sr.first, sr.second, vr, std::max(gl, gr)).mass;
+  return {mass, std::max(0.0, zl - bedFace), std::max(0.0, zr - bedFace)};
+}
+
 // MUSCL-Hancock predictor (van Leer 1984; Toro 2009, sec. 14.4), from the formulas of
 // kernels/flow/hancock.cl: both faces advance by half a step, r = dt / (2 dx), u_bar = (u_lo + u_hi)/2,
-// dh = r (q_lo - q_hi) with q the discharge each face passes (predictorFace, from the
-// neighbours' MUSCL faces; the face's own h u next to outside cells and at empty faces), cut to
+// dh = r (q_lo - q_hi) with q each face's mass flux (predictorFace, from the neighbours' MUSCL
+// faces; the face's own h u next to outside cells and at empty faces), cut to
 // empty the thinner face at most, du = -r [u_bar (u_hi - u_lo) + g ((eta_hi - drop_hi) -
 // (eta_lo - drop_lo))] with each face's drop,
 // dv = -r u_bar (v_hi - v_lo); a face at or below h_dry is dry (no thickness, no velocity).
@@ -210,15 +213,15 @@ CpuFlowReference::Faces CpuFlowReference::predict(const State& s, const Faces& f
   double qLo = f.hLo * f.unLo, qHi = f.hHi * f.unHi, dropLo = 0.0, dropHi = 0.0;
   if (inside(i - di, j - dj) && f.hLo > 0.0) {
     const Faces m = muscl(s, i - di, j - dj, dir);
-    const PredictorFace pf =
-        predictorFace(m.hHi, m.etaHi, m.unHi, gp_[grid_.index(i - di, j - dj)], f.hLo, f.etaLo, f.unLo, g);
-    qLo = pf.qPlus, dropLo = pf.dropPlus;
+    const PredictorFace pf = predictorFace(m.hHi, m.etaHi, m.unHi, m.utHi, gp_[grid_.index(i - di, j - dj)], f.hLo,
+                                           f.etaLo, f.unLo, f.utLo, g);
+    qLo = pf.mass, dropLo = pf.dropPlus;
   }
   if (inside(i + di, j + dj) && f.hHi > 0.0) {
     const Faces p = muscl(s, i + di, j + dj, dir);
-    const PredictorFace pf =
-        predictorFace(f.hHi, f.etaHi, f.unHi, g, p.hLo, p.etaLo, p.unLo, gp_[grid_.index(i + di, j + dj)]);
-    qHi = pf.qMinus, dropHi = pf.dropMinus;
+    const PredictorFace pf = predictorFace(f.hHi, f.etaHi, f.unHi, f.utHi, g, p.hLo, p.etaLo, p.unLo, p.utLo,
+                                           gp_[grid_.index(i + di, j + dj)]);
+    qHi = pf.mass, dropHi = pf.dropMinus;
   }
   const double dh = std::max(r * (qLo - qHi), -std::min(f.hLo, f.hHi));
   const double ubar = 0.5 * (f.unLo + f.unHi);

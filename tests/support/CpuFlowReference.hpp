@@ -89,6 +89,12 @@ class CpuFlowReference {
   /// The MUSCL-Hancock predictor of the faces f of cell (i, j) (Time Scheme=hancock).
   Faces predict(const State& s, const Faces& f, int i, int j, int dir) const;
   FaceFlux riemann(double hl, double ul, double vl, double hr, double ur, double vr, double g) const;
+  /// The Hancock predictor's view of one face (kernels/flow/hancock.cl, hancock_face).
+  struct PredictorFace {
+    double mass, dropMinus, dropPlus;
+  };
+  PredictorFace predictorFace(double hl, double el, double ul, double vl, double gl, double hr, double er, double ur,
+                              double vr, double gr) const;
   FaceFlux faceFlux(const State& s, int i, int j, int dir) const;
   /// out = base/2 + (s + dt L(s))/2 when base is given, else s + dt L(s); returns the outward
   /// mass flux summed over boundary faces [m^2/s].
