@@ -232,8 +232,8 @@ def main():
         P("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
         href, dxr = hmax_map(work, ref_key, S[ref_key])
         rows = [k for k in S if "/kot_r5/" in k]
-        order = ["float", "double", "float_sc0", "double_sc0", "float_sc0_split", "float_sc0_split_cfl09", "geoclaw",
-                 "geoclaw_dry1e-3"]
+        order = ["float", "double", "float_sc0", "double_sc0", "float_sc0_split", "float_sc0_split_cfl09",
+                 "float_sc0_hancock_cfl09", "float_hancock_cfl09", "geoclaw", "geoclaw_dry1e-3"]
         kot_vols = {}
         rows.sort(key=lambda k: (order.index(k.split("/")[2]), k.split("/")[3]))
         kot = {}

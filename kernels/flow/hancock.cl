@@ -59,16 +59,19 @@ INLINE PredictorFace hancock_face(Side m, Side p) {
   return o;
 }
 
-/// The predictor with the mass fluxes q_lo, q_hi of the cell's two faces and their drops
-/// (see above).
-INLINE CellFaces hancock_predict(CellFaces f, real q_lo, real q_hi, real drop_lo, real drop_hi, real g, real r,
-                                 real h_dry) {
-  real dh = r * (q_lo - q_hi);
+/// The predictor's change of both face thicknesses from the mass fluxes q_lo, q_hi of the cell's two
+/// faces (see above), cut where it would empty the thinner face.
+INLINE real hancock_thickness_change(CellFaces f, real q_lo, real q_hi, real r) {
+  const real dh = r * (q_lo - q_hi);
+  const real thinner = fmin(f.h_lo, f.h_hi);
+  return thinner + dh < (real)0 ? -thinner : dh;
+}
+
+/// The predicted faces from the MUSCL faces f, the thickness change dh and the two faces' drops.
+INLINE CellFaces hancock_predict(CellFaces f, real dh, real drop_lo, real drop_hi, real g, real r, real h_dry) {
   const real ubar = (real)0.5 * (f.un_lo + f.un_hi);
   const real du = -r * (ubar * (f.un_hi - f.un_lo) + g * ((f.e_hi - drop_hi) - (f.e_lo - drop_lo)));
   const real dv = -r * ubar * (f.ut_hi - f.ut_lo);
-  const real thinner = fmin(f.h_lo, f.h_hi);
-  if (thinner + dh < (real)0) dh = -thinner;
   CellFaces o;
   o.h_lo = f.h_lo + dh;
   o.h_hi = f.h_hi + dh;

@@ -232,8 +232,8 @@ void addNumericsKeys(KeyRegistry& r) {
       << choice("Time Scheme", {"unsplit", "split", "hancock"}, "unsplit",
                 "water: SSP-RK2 over both directions at once; dimensionally split sweeps with a per-direction "
                 "time step (about half the steps where the flow is not along one axis), each one SSP-RK2; or the "
-                "same sweeps with one MUSCL-Hancock stage each (half the work of split, and at CFL 0.9 far less "
-                "damping of roll waves and surges on steep slopes); two-phase runs are unsplit")
+                "same sweeps with one MUSCL-Hancock stage each (half the flux evaluations of split; at CFL 0.9 "
+                "far less damping of roll waves and surges on steep slopes); two-phase runs are unsplit")
       << choice("Limiter", {"minmod", "vanleer", "mc", "none"}, "mc",
                 "slope limiter of the MUSCL reconstruction (none: first-order scheme, for comparisons)")
       << choice("Riemann Solver", {"hll", "hllc"}, "hllc", "approximate Riemann solver of the fluxes")

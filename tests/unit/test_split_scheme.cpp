@@ -120,6 +120,12 @@ TEST(SplitScheme, RunFilesAskingForWhatTheSchemesCannotDoAreRefusedByKey) {
   refusedFor("CFL=0.9\n", "CFL");                   // unsplit: positive only up to 1/2
   refusedFor("Time Scheme=split\nCFL=1.1\n", "CFL");  // beyond the sweeps' stability limit
   refusedFor("Time Scheme=split\nInclude Initial Solids=1\nInitial Solid Height=0.5\n", "Time Scheme");
+  // The MUSCL-Hancock sweeps (Time Scheme=hancock) take the same per-direction CFL and are water only.
+  const auto hancock = load("Time Scheme=hancock\nCFL=0.9\n");
+  EXPECT_EQ(hancock.settings.scheme, fl::TimeScheme::Hancock);
+  EXPECT_EQ(hancock.settings.cfl, 0.9);
+  refusedFor("Time Scheme=hancock\nCFL=1.1\n", "CFL");
+  refusedFor("Time Scheme=hancock\nInclude Initial Solids=1\nInitial Solid Height=0.5\n", "Time Scheme");
 }
 
 TEST(SplitScheme, StableStepIsPerDirection) {
