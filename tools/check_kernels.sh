@@ -27,7 +27,8 @@ for file in "$root"/kernels/*/*.cl; do
       for optional in 0 1; do
         defines=(-DTALUS_DOUBLE=$precision -DLIMITER=$limiter -DRIEMANN=$(( limiter % 2 )) -DTILE=16
                  -DDEBRIS_VISCOUS=$optional -DDEBRIS_OBSTACLE=$optional -DDEBRIS_CURVATURE=$optional
-                 -DPARTICLE_CURVATURE=$optional -DPARTICLE_METRIC=$optional -DMANNING_ALONG_BED=$optional -DRHEOLOGY=$limiter -DSPLIT=$optional)
+                 -DPARTICLE_CURVATURE=$optional -DPARTICLE_METRIC=$optional -DMANNING_ALONG_BED=$optional -DRHEOLOGY=$limiter -DSPLIT=$optional
+                 -DHANCOCK=$(( optional && limiter % 2 )))
         count=$(( count + 1 ))
         if ! out=$("$clang" -x cl -cl-std=CL1.2 -fsyntax-only -Xclang -finclude-default-header -Werror \
                    "${defines[@]}" -I"$root/kernels" "$file" 2>&1); then

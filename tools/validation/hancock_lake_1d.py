@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """A lake at rest with dry islands under a one-stage MUSCL-Hancock step, in 1D (issue 21).
 
-Why this exists: the unmerged `Time Scheme=hancock` (docs/experiments/hancock_wip.patch) keeps roll-wave
-crests that the two-stage scheme damps, but a lake at rest over a rough bed with dry islands grows
+Why this exists: `Time Scheme=hancock` (kernels/flow/hancock.cl; unmerged when this was written)
+keeps roll-wave crests that the two-stage scheme damps, but a lake at rest over a rough bed with dry islands grows
 round-off into motion under it (docs/numerics.md, "Roll waves"). This script is an independent 1D
 re-implementation of the same discretisation, small enough to read in one sitting, used to test
 candidate predictors on that lake:
