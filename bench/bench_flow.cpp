@@ -75,18 +75,25 @@ double timeSteps(compute::Context& ctx, flow::FlowSolver& solver, int steps) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-void benchWet(const std::string& device, compute::Precision prec, int size, int steps) {
+/// The wet grid with one time scheme (unsplit at CFL 0.5; the split and MUSCL-Hancock sweeps at
+/// 0.9, where they are used). A step is one step of the scheme: two RK stages over both directions,
+/// two RK stages per direction, or one MUSCL-Hancock stage per direction; the steps per simulated
+/// second differ (docs/performance.md), so compare rates of one scheme only across devices.
+void benchWet(const std::string& device, compute::Precision prec, int size, int steps, flow::TimeScheme scheme) {
   auto ctx = compute::Context::create(device, prec);
   const Grid g = Grid::make(size, size, 1.0);
   flow::FlowSettings settings;
   settings.edge = flow::Boundary::Wall;
+  settings.scheme = scheme;
+  if (scheme != flow::TimeScheme::Unsplit) settings.cfl = 0.9;
   flow::FlowSolver solver(*ctx, g, settings);
   solver.setInput(wetScene(g));
   const double seconds = timeSteps(*ctx, solver, steps);
   const double rate = static_cast<double>(g.cells()) * steps / seconds;
   const double gbs = rate * kRealsPerCellUpdate * compute::realSize(prec) / 1e9;
-  std::printf("wet %5dx%-5d %-6s  %3d steps  %8.3f s  %10.4g cell-updates/s  %7.2f GB/s effective\n", size, size,
-              compute::precisionName(prec), steps, seconds, rate, gbs);
+  const char* name = scheme == flow::TimeScheme::Unsplit ? "" : scheme == flow::TimeScheme::Split ? " split" : " hancock";
+  std::printf("wet %5dx%-5d %-6s%s  %3d steps  %8.3f s  %10.4g cell-updates/s  %7.2f GB/s effective\n", size, size,
+              compute::precisionName(prec), name, steps, seconds, rate, gbs);
   std::printf("%s\n", ctx->profiler().report().c_str());
 }
 
@@ -181,7 +188,7 @@ void benchDryTiles(const std::string& device, int size, int steps) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::vector<std::string> sizes = {"1000", "4000"}, precisions = {"float", "double"};
+  std::vector<std::string> sizes = {"1000", "4000"}, precisions = {"float", "double"}, schemes = {"unsplit"};
   std::string device;
   int steps = 10;
   for (int a = 1; a < argc; ++a) {
@@ -191,22 +198,26 @@ int main(int argc, char** argv) {
     else if (arg == "--precision" && more) precisions = split(argv[++a]);
     else if (arg == "--steps" && more) steps = std::atoi(argv[++a]);
     else if (arg == "--device" && more) device = argv[++a];
+    else if (arg == "--schemes" && more) schemes = split(argv[++a]);
     else {
-      std::fprintf(stderr, "usage: bench_flow [--sizes 1000,4000] [--precision float,double] [--steps N] [--device SEL]\n");
+      std::fprintf(stderr, "usage: bench_flow [--sizes 1000,4000] [--precision float,double] [--steps N] [--device SEL] "
+                           "[--schemes unsplit,split,hancock]\n");
       return 1;
     }
   }
   try {
     std::printf("device: %s\n\n", compute::selectDevice(device).describe().c_str());
-    for (const std::string& p : precisions)
-      for (const std::string& s : sizes) {
-        const int size = std::atoi(s.c_str());
-        try {
-          benchWet(device, compute::parsePrecision(p), size, size >= 4000 ? std::max(2, steps / 4) : steps);
-        } catch (const ComputeError& e) {
-          std::printf("wet %dx%d %s: not run: %s\n\n", size, size, p.c_str(), e.what());
+    for (const std::string& sc : schemes)
+      for (const std::string& p : precisions)
+        for (const std::string& s : sizes) {
+          const int size = std::atoi(s.c_str());
+          try {
+            benchWet(device, compute::parsePrecision(p), size, size >= 4000 ? std::max(2, steps / 4) : steps,
+                     flow::parseTimeScheme(sc));
+          } catch (const ComputeError& e) {
+            std::printf("wet %dx%d %s: not run: %s\n\n", size, size, p.c_str(), e.what());
+          }
         }
-      }
     benchDryTiles(device, 2000, steps);
     for (const std::string& p : precisions) benchTwoPhase(device, compute::parsePrecision(p), 500, std::max(2, steps / 2));
   } catch (const std::exception& e) {

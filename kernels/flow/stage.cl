@@ -65,8 +65,8 @@
 #define NFA (TILE + 1 + 2 * RING)  // faces per row along a direction
 #define NFACE (NFA * TILE)         // faces per direction
 // Local memory per work-group at TILE 16: 5 SPAN^2 + 6 FACE_SLOTS NFACE (+ the draining factors,
-// + 3 NPC predictor data with HANCOCK) reals and SPAN^2 bytes: 42.5 KB in double and 21.5 KB in
-// float without DRAINING, 36.7 / 18.6 KB with it, 47.1 / 23.8 KB (KiB) with HANCOCK (HALO 4), under
+// + 3 NPF predictor faces with HANCOCK) reals and SPAN^2 bytes: 42.5 KB in double and 21.5 KB in
+// float without DRAINING, 36.7 / 18.6 KB with it, 47.4 / 24.0 KiB with HANCOCK (HALO 4), under
 // the 48 KiB a work-group may hold statically on NVIDIA devices.
 
 /// Primitive state of the cell at local position (a, b) of the tile + halo block, along `dir`.
@@ -96,57 +96,40 @@ INLINE CellFaces muscl_faces(__local const real* lh, __local const real* le, __l
 }
 
 #if HANCOCK
-#define NPA (TILE + 2 * RING + 2)  // cells per row along the sweep whose predicted faces the stage needs
-#define NPC (NPA * TILE)
-/// Index of the local cell (a, b) among the cells whose predictor data the stage keeps (phase 1b).
-INLINE int predictor_slot(int a, int b, int dir) {
+#define NPFA (TILE + 2 * RING + 3)  // faces per row along the sweep that the predicted cells touch
+#define NPF (NPFA * TILE)
+/// Index among the predictor faces (phase 1b) of the lo face of the local cell (a, b); its hi face
+/// is the next one. Face k of a row lies between the cells HALO - RING - 2 + k and the next.
+INLINE int predictor_lo_face(int a, int b, int dir) {
   const int along = dir == 0 ? a : b, across = dir == 0 ? b : a;
-  return (along - (HALO - RING - 1)) + (across - HALO) * NPA;
-}
-
-/// The predictor's view of the local cell (a, b): its thickness change and its faces' drops
-/// (flow/hancock.cl, hancock_face), from its MUSCL faces and its neighbours' (two cells further
-/// than the stencil of muscl_faces: HALO 4).
-INLINE real4 predictor_data(__local const real* lh, __local const real* le, __local const real* lu,
-                            __local const real* lv, __local const real* lg, __local const uchar* lin, int a, int b,
-                            int dir, real r, real h_dry) {
-  const CellFaces f = muscl_faces(lh, le, lu, lv, lin, a, b, dir, h_dry);
-  const int da = dir == 0, db = dir == 1;
-  const int m_in = lin[(b - db) * SPAN + a - da], p_in = lin[(b + db) * SPAN + a + da];
-  const real g = lg[b * SPAN + a];
-  real q_lo = f.h_lo * f.un_lo, q_hi = f.h_hi * f.un_hi, drop_lo = 0, drop_hi = 0;
-  if (m_in && f.h_lo > (real)0) {
-    const CellFaces fm = muscl_faces(lh, le, lu, lv, lin, a - da, b - db, dir, h_dry);
-    const PredictorFace pf = hancock_face(side_hi(fm, lg[(b - db) * SPAN + a - da]), side_lo(f, g));
-    q_lo = pf.mass;
-    drop_lo = pf.drop_p;
-  }
-  if (p_in && f.h_hi > (real)0) {
-    const CellFaces fp = muscl_faces(lh, le, lu, lv, lin, a + da, b + db, dir, h_dry);
-    const PredictorFace pf = hancock_face(side_hi(f, g), side_lo(fp, lg[(b + db) * SPAN + a + da]));
-    q_hi = pf.mass;
-    drop_hi = pf.drop_m;
-  }
-  return (real4)(hancock_thickness_change(f, q_lo, q_hi, r), drop_lo, drop_hi, 0);
+  return (along - (HALO - RING - 1)) + (across - HALO) * NPFA;
 }
 #endif
 
 /// The face values the stage's fluxes use: the MUSCL ones, in the MUSCL-Hancock build advanced by
-/// half a step (flow/hancock.cl; r = dt / (2 dx), the cell's g_p) with the predictor data of phase
-/// 1b (pdh: thickness change, pdl / pdu: drops of the lo / hi face).
+/// half a step (flow/hancock.cl; r = dt / (2 dx), the cell's g_p) with what phase 1b found at its
+/// two faces (pm: the corrector's mass flux of the unpredicted faces, pdm / pdp: the drops of the
+/// face's minus and plus sides; hancock_face). Next to an outside cell, and where the cell's own
+/// face is empty, the face's own h u and no drop.
 INLINE CellFaces local_faces(__local const real* lh, __local const real* le, __local const real* lu,
                              __local const real* lv, __local const real* lg, __local const uchar* lin,
-                             __local const real* pdh, __local const real* pdl, __local const real* pdu, int a, int b,
+                             __local const real* pm, __local const real* pdm, __local const real* pdp, int a, int b,
                              int dir, real r, real h_dry) {
   const CellFaces f = muscl_faces(lh, le, lu, lv, lin, a, b, dir, h_dry);
 #if HANCOCK
-  const int c = predictor_slot(a, b, dir);
-  return dry_faces(hancock_predict(f, pdh[c], pdl[c], pdu[c], lg[b * SPAN + a], r, h_dry), h_dry);
+  const int da = dir == 0, db = dir == 1;
+  const int m_in = lin[(b - db) * SPAN + a - da], p_in = lin[(b + db) * SPAN + a + da];
+  const int lo = predictor_lo_face(a, b, dir), hi = lo + 1;
+  const int use_lo = m_in && f.h_lo > (real)0, use_hi = p_in && f.h_hi > (real)0;
+  const real q_lo = use_lo ? pm[lo] : f.h_lo * f.un_lo, q_hi = use_hi ? pm[hi] : f.h_hi * f.un_hi;
+  const real drop_lo = use_lo ? pdp[lo] : (real)0, drop_hi = use_hi ? pdm[hi] : (real)0;
+  const real dh = hancock_thickness_change(f, q_lo, q_hi, r);
+  return dry_faces(hancock_predict(f, dh, drop_lo, drop_hi, lg[b * SPAN + a], r, h_dry), h_dry);
 #else
   (void)lg;
-  (void)pdh;
-  (void)pdl;
-  (void)pdu;
+  (void)pm;
+  (void)pdm;
+  (void)pdp;
   (void)r;
   return f;
 #endif
@@ -175,12 +158,12 @@ void flow_stage(__constant const FlowParams* p, __global const uchar* mask, __gl
   __local real theta[(TILE + 2 * RING) * TILE];  // draining factors of the cells along the sweep
 #endif
 #if HANCOCK
-  // The predictor's data of the cells along the sweep (phase 1b): thickness change, drops.
-  __local real pdh[NPC], pdl[NPC], pdu[NPC];
+  // The predictor's view of the faces along the sweep (phase 1b): mass flux, the sides' drops.
+  __local real pm[NPF], pdm[NPF], pdp[NPF];
 #else
-  __local real* pdh = 0;
-  __local real* pdl = 0;
-  __local real* pdu = 0;
+  __local real* pm = 0;
+  __local real* pdm = 0;
+  __local real* pdp = 0;
 #endif
   const int tile = tile_list[get_group_id(0)];
   const int x0 = (tile % p->tiles_x) * TILE - HALO, y0 = (tile / p->tiles_x) * TILE - HALO;
@@ -207,17 +190,24 @@ void flow_stage(__constant const FlowParams* p, __global const uchar* mask, __gl
   barrier(CLK_LOCAL_MEM_FENCE);
 
 #if HANCOCK
-  // 1b. The predictor's data of every cell whose predicted faces the stage uses, once per cell.
+  // 1b. What the corrector's face would do with the unpredicted values, once per face the predicted
+  // cells touch (flow/hancock.cl, hancock_face).
   {
     const int dir = (dir_mask & 1) ? 0 : 1;  // the sweep's direction
-    for (int c = lid; c < NPC; c += TILE * TILE) {
-      const int along = HALO - RING - 1 + c % NPA, across = HALO + c / NPA;
-      const int ca = dir == 0 ? along : across, cb = dir == 0 ? across : along;
-      const real4 d = lin[cb * SPAN + ca] ? predictor_data(lh, le, lu, lv, lg, lin, ca, cb, dir, hr, p->h_dry)
-                                          : (real4)(0, 0, 0, 0);
-      pdh[c] = d.x;
-      pdl[c] = d.y;
-      pdu[c] = d.z;
+    const int da = dir == 0, db = dir == 1;
+    for (int k = lid; k < NPF; k += TILE * TILE) {
+      const int along = HALO - RING - 2 + k % NPFA, across = HALO + k / NPFA;
+      const int am = dir == 0 ? along : across, bm = dir == 0 ? across : along;
+      const int sm = bm * SPAN + am, sp = (bm + db) * SPAN + am + da;
+      PredictorFace pf = {0, 0, 0};
+      if (lin[sm] && lin[sp]) {
+        const CellFaces fm = muscl_faces(lh, le, lu, lv, lin, am, bm, dir, p->h_dry);
+        const CellFaces fp = muscl_faces(lh, le, lu, lv, lin, am + da, bm + db, dir, p->h_dry);
+        pf = hancock_face(side_hi(fm, lg[sm]), side_lo(fp, lg[sp]));
+      }
+      pm[k] = pf.mass;
+      pdm[k] = pf.drop_m;
+      pdp[k] = pf.drop_p;
     }
     barrier(CLK_LOCAL_MEM_FENCE);
   }
@@ -236,8 +226,8 @@ void flow_stage(__constant const FlowParams* p, __global const uchar* mask, __gl
       const int m_in = lin[sm], p_in = lin[sp];
       Face fc = {0, 0, 0, 0, 0, 0};
       if (m_in || p_in) {
-        const CellFaces mf = local_faces(lh, le, lu, lv, lg, lin, pdh, pdl, pdu, m_in ? am : ap, m_in ? bm : bp, dir, hr, p->h_dry);
-        const CellFaces pf = p_in ? local_faces(lh, le, lu, lv, lg, lin, pdh, pdl, pdu, ap, bp, dir, hr, p->h_dry) : mf;
+        const CellFaces mf = local_faces(lh, le, lu, lv, lg, lin, pm, pdm, pdp, m_in ? am : ap, m_in ? bm : bp, dir, hr, p->h_dry);
+        const CellFaces pf = p_in ? local_faces(lh, le, lu, lv, lg, lin, pm, pdm, pdp, ap, bp, dir, hr, p->h_dry) : mf;
         const int outside_a = m_in ? ap : am, outside_b = m_in ? bp : bm;
         const real far = (m_in && p_in) ? (real)0 : far_level[cell_index(p, x0 + (m_in ? am : ap), y0 + (m_in ? bm : bp))];
         fc = face_between(m_in, side_hi(mf, lg[sm]), p_in, side_lo(pf, lg[sp]),
@@ -310,7 +300,7 @@ void flow_stage(__constant const FlowParams* p, __global const uchar* mask, __gl
     // and the centred well-balanced bed source from the cell's own reconstruction.
     real s = (ffqn[op] + g * (ffp[op] + ffcm[op])) - (ffqn[om] + g * (ffp[om] + ffcp[om]));
     if (lh[sc] > (real)0) {
-      const CellFaces own = local_faces(lh, le, lu, lv, lg, lin, pdh, pdl, pdu, la, lb, dir, hr, p->h_dry);
+      const CellFaces own = local_faces(lh, le, lu, lv, lg, lin, pm, pdm, pdp, la, lb, dir, hr, p->h_dry);
       s += g * (real)0.5 * (own.h_lo + own.h_hi) * ((own.e_hi - own.h_hi) - (own.e_lo - own.h_lo));
       const real dg = g - gn[k];  // exactly zero with the default depth pressure (g_p == g_n)
       if (dg != (real)0 && m_in && p_in)
