@@ -12,7 +12,7 @@
 //   TALUS_STRESS_VERBOSE=1      one line per scene (default: on for runs of at most 100 scenes)
 //   TALUS_STRESS_DEBRIS_SEED=<s> run exactly that one two-phase (Debris) scene and nothing else
 //   TALUS_STRESS_DT_SCALE=<f>   multiply every time step by f (diagnosis: does a failure converge in dt?)
-//   TALUS_STRESS_DUMP=1         a failing two-phase scene prints every cell (bed, initial and current state)
+//   TALUS_STRESS_DUMP=1         a scene failing its energy bound prints every cell (bed, initial and current state)
 //   TALUS_STRESS_SCHEME=split   run the single-phase scenes with the dimensionally split time scheme
 //                               (TEST(Stress, SplitScheme) does so for the CI subset of every family);
 //                               =split-draining: the same at twice the scene's CFL (up to 1);

@@ -834,6 +834,11 @@ StressOutcome runStressScene(const StressScene& scene) {
       fail("kinetic energy " + num(t.kinetic) + " exceeds E_kin(0) + g dP + slope work = " + num(t0.kinetic) +
            " + " + num(released) + " + " + num(slopeWork) + " by " + num(excess) + " (slack " + num(slack) +
            ") [per unit density, m^5/s^2]" + context());
+      if (std::getenv("TALUS_STRESS_DUMP")) {
+        for (std::size_t k = 0; k < g.cells(); ++k)
+          std::printf("cell %s mask %d bed %.6g h0 %.6g | h %.9g q (%.6g %.6g) g_p %.6g\n", cellText(g, k).c_str(),
+                      static_cast<int>(scene.input.mask[k]), bed[k], scene.input.h[k], h[k], qx[k], qy[k], gp[k]);
+      }
       break;
     }
   }
