@@ -17,7 +17,8 @@
 // and no face velocity is a momentum divided by a thin face's thickness. Where dh would empty the
 // thinner face it is cut to leave that face at zero (positivity of the predicted states; the
 // corrector is positive by the split sweeps' draining time, stage.cl); a face left at or below
-// h_dry has no velocity. A first-order cell (equal face values) is left unchanged.
+// h_dry has no velocity. A first-order cell (equal face values) still changes: its thickness by
+// its faces' mass fluxes, its velocity by their drops.
 // Friction is not in the predictor: the step is Strang-split, friction over dt/2 before and after
 // it (FlowSolver::step). With friction in the predictor as well, a sheet on a rough slope was
 // slowed twice (its 5 m map 0.39 from the 1.25 m one, 0.31 without) and the linear roll waves

@@ -128,9 +128,7 @@ typedef struct {
   FaceFlux r;
 } HydrostaticFace;
 
-/// The face bed z* and the two sides' states at it, without the flux (hydrostatic_face; the
-/// MUSCL-Hancock predictor's passing discharge, flow/hancock.cl).
-INLINE HydrostaticFace hydrostatic_sides(Side m, Side p) {
+INLINE HydrostaticFace hydrostatic_face(Side m, Side p) {
   HydrostaticFace f;
   f.zm = m.e - m.h;
   f.zp = p.e - p.h;
@@ -141,11 +139,6 @@ INLINE HydrostaticFace hydrostatic_sides(Side m, Side p) {
   f.bs = fmin(fmax(f.zm, f.zp), fmin(am.head, ap.head));
   f.sm = f.bs >= f.zm ? bernoulli_state(m.h, m.e, m.un, am, m.g, f.bs) : (real2)(m.h, m.un);
   f.sp = f.bs >= f.zp ? bernoulli_state(p.h, p.e, p.un, ap, p.g, f.bs) : (real2)(p.h, p.un);
-  return f;
-}
-
-INLINE HydrostaticFace hydrostatic_face(Side m, Side p) {
-  HydrostaticFace f = hydrostatic_sides(m, p);
   f.r = riemann_flux(f.sm.x, f.sm.y, m.ut, f.sp.x, f.sp.y, p.ut, fmax(m.g, p.g));
   return f;
 }

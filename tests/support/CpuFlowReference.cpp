@@ -146,10 +146,10 @@ CpuFlowReference::Faces CpuFlowReference::muscl(const State& s, int i, int j, in
     double de_m = c.eta - m.eta, de_p = p.eta - c.eta;
     if (settings_.scheme == flow::TimeScheme::Hancock) {
       // An empty neighbour whose bed stands above the cell's surface plus the kinetic head of its
-      // motion towards it is a wall: difference zero (flow_common.cl, HANCOCK; g = 9.81 there).
+      // motion towards it is a wall: difference zero (flow_common.cl, HANCOCK: GRAVITY there).
       const double um = std::max(0.0, -c.un), up = std::max(0.0, c.un);
-      if (m.h <= 0.0 && m.eta > c.eta + um * um / (2.0 * 9.81)) de_m = 0.0;
-      if (p.h <= 0.0 && p.eta > c.eta + up * up / (2.0 * 9.81)) de_p = 0.0;
+      if (m.h <= 0.0 && m.eta > c.eta + um * um / (2.0 * kGravity)) de_m = 0.0;
+      if (p.h <= 0.0 && p.eta > c.eta + up * up / (2.0 * kGravity)) de_p = 0.0;
     }
     const double se = limiter(de_m, de_p);
     const double hmax = std::max({m.h, c.h, p.h}), hmin = std::min({m.h, c.h, p.h});
