@@ -184,6 +184,25 @@ TEST(Thacker, SplitSchemeOnePeriod) {
   RecordProperty("thacker_split_steps_100", std::to_string(split[1].steps));
 }
 
+namespace {
+/// The sweeps of `scheme` at CFL 0.9 against the split sweeps at 0.5 on the 100^2 oscillation:
+/// volume to round-off, L1(h) within errFactor of the reference's, the centre within 25 %, in under
+/// stepFactor of its steps. Returns the CFL 0.9 run.
+ThackerErrors expectSweepsAtNineTenths(fl::TimeScheme scheme, const char* name, double errFactor, double stepFactor) {
+  const ThackerErrors half = runThacker(100, fl::TimeScheme::Split);
+  const ThackerErrors nine = runThacker(100, scheme, 0.9);
+  std::printf("[ Thacker planar, 100^2 ] split CFL 0.5: L1(h) %.4e m^3, centre %.4e m, %d steps; %s CFL 0.9: L1(h) "
+              "%.4e m^3, centre %.4e m, %d steps\n",
+              half.errH, half.errCentre, half.steps, name, nine.errH, nine.errCentre, nine.steps);
+  EXPECT_LT(nine.volumeDrift, kVolumeTol);
+  EXPECT_LT(nine.hostVolumeDrift, kVolumeTol);
+  EXPECT_LT(nine.errH, errFactor * half.errH);
+  EXPECT_LT(nine.errCentre, 1.25 * half.errCentre + 1e-4);
+  EXPECT_LT(nine.steps, stepFactor * half.steps);
+  return nine;
+}
+}  // namespace
+
 // The split sweeps at a Courant number of 0.9 (GeoClaw's default), above the 1/2 of their positivity
 // proof: the shoreline cells that empty within a stage have their outflow limited by the draining
 // time (kernels/flow/stage.cl). Volume is kept to round-off, and the errors stay those of CFL 0.5
@@ -192,16 +211,7 @@ TEST(Thacker, SplitSchemeOnePeriod) {
 // less, as the largest speed of the flow it meets differs from step to step: 0.596 of the steps
 // measured).
 TEST(Thacker, SplitSchemeAtCourantNumberNineTenths) {
-  const ThackerErrors half = runThacker(100, fl::TimeScheme::Split);
-  const ThackerErrors nine = runThacker(100, fl::TimeScheme::Split, 0.9);
-  std::printf("[ Thacker planar, split, 100^2 ] CFL 0.5: L1(h) %.4e m^3, centre %.4e m, %d steps; CFL 0.9: L1(h) %.4e "
-              "m^3, centre %.4e m, %d steps\n",
-              half.errH, half.errCentre, half.steps, nine.errH, nine.errCentre, nine.steps);
-  EXPECT_LT(nine.volumeDrift, kVolumeTol);
-  EXPECT_LT(nine.hostVolumeDrift, kVolumeTol);
-  EXPECT_LT(nine.errH, 1.25 * half.errH);
-  EXPECT_LT(nine.errCentre, 1.25 * half.errCentre + 1e-4);
-  EXPECT_LT(nine.steps, 0.65 * half.steps);
+  const ThackerErrors nine = expectSweepsAtNineTenths(fl::TimeScheme::Split, "split", 1.25, 0.65);
   RecordProperty("thacker_split_cfl09_l1_h_100", std::to_string(nine.errH));
   RecordProperty("thacker_split_cfl09_steps_100", std::to_string(nine.steps));
 }
@@ -216,15 +226,6 @@ TEST(Thacker, SplitSchemeAtCourantNumberNineTenths) {
 // 2.49e-3 against 2.45e-3, 282 steps against 417 (0.68). Bounds: 1.75x the error (the shoreline
 // rule's measured cost with a margin of 10 %) and 0.75 of the steps.
 TEST(Thacker, MusclHancockSweepsAtCourantNumberNineTenths) {
-  const ThackerErrors half = runThacker(100, fl::TimeScheme::Split);
-  const ThackerErrors nine = runThacker(100, fl::TimeScheme::Hancock, 0.9);
-  std::printf("[ Thacker planar, 100^2 ] split CFL 0.5: L1(h) %.4e m^3, centre %.4e m, %d steps; MUSCL-Hancock CFL "
-              "0.9: L1(h) %.4e m^3, centre %.4e m, %d steps\n",
-              half.errH, half.errCentre, half.steps, nine.errH, nine.errCentre, nine.steps);
-  EXPECT_LT(nine.volumeDrift, kVolumeTol);
-  EXPECT_LT(nine.hostVolumeDrift, kVolumeTol);
-  EXPECT_LT(nine.errH, 1.75 * half.errH);
-  EXPECT_LT(nine.errCentre, 1.25 * half.errCentre + 1e-4);
-  EXPECT_LT(nine.steps, 0.75 * half.steps);
+  const ThackerErrors nine = expectSweepsAtNineTenths(fl::TimeScheme::Hancock, "MUSCL-Hancock", 1.75, 0.75);
   RecordProperty("thacker_hancock_cfl09_l1_h_100", std::to_string(nine.errH));
 }
